@@ -1,0 +1,54 @@
+// Boundary conditions by named boundary (physical surface).  The scene lists them with
+// -bc_names a,b,c and sets each with -bc_<name>_type:
+//   noslip                       v = 0
+//   velocity                     v = profile(x) * waveform(t); -bc_<name>_profile
+//                                uniform|parabolic|exact, -bc_<name>_value [m/s] (mean speed),
+//                                -bc_<name>_direction x,y,z, parabolic: -bc_<name>_center, _radius
+//   pressure                     traction -P(t) n, P = -bc_<name>_value [Pa] * waveform(t)
+//   traction_exact               traction sigma_exact n from -exact_solution (verification)
+// Waveforms: -bc_<name>_waveform constant|step|cosine|sine (+ _t_off, _period, _ramp).
+// Boundaries not listed are traction-free.  Dirichlet data are imposed at t_{n+1} on the nodes'
+// current positions; tractions enter the momentum residual at t_{n+alpha_f}.
+#pragma once
+#include "fsi/analytic.hpp"
+#include "fsi/p2tet.hpp"
+#include "fsi/space.hpp"
+#include "fsi/step_context.hpp"
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+struct BoundaryCondition {
+  enum Type { NoSlip, Velocity, Pressure, TractionExact } type = NoSlip;
+  std::string name, profile = "uniform";
+  double value = 0, dir[3] = {0, 0, 1}, center[3] = {0, 0, 0}, radius = 1;
+  Waveform wave;
+  std::vector<DofNode> nodes;       // Dirichlet types
+  std::vector<BoundaryFace> faces;  // traction types
+};
+
+class Boundaries {
+public:
+  void setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu);
+  // Local dof mask of all Dirichlet dofs (velocity nodes and the pinned pressure, if any).
+  const std::vector<char> &dirichlet_mask() const { return mask_; }
+  // (local dof, value) for every Dirichlet dof at time t, node positions X (3 per vertex).
+  void dirichlet_values(double t, const double *X, std::vector<std::pair<PetscInt, double>> &out) const;
+  void add_traction_residual(const StepContext &ctx, PetscScalar *F) const;
+  bool pressure_pinned() const { return pin_dof_ >= 0 || pinned_; }
+  const std::vector<BoundaryCondition> &list() const { return bcs_; }
+
+private:
+  std::vector<BoundaryCondition> bcs_;
+  std::vector<char> mask_;
+  const ExactFlow *exact_ = nullptr;
+  const Space *space_ = nullptr;
+  double mu_ = 0;
+  PetscInt pin_dof_ = -1;
+  int pin_vertex_ = -1;
+  bool pinned_ = false;
+  QuadRule face_rule_;
+};
+
+} // namespace fsi

@@ -1,0 +1,33 @@
+// Shared helpers: PETSc error checking that throws, and the input-error exception that main()
+// turns into one clear line and a non-zero exit.
+#pragma once
+#include <petsc.h>
+#include <stdexcept>
+#include <string>
+
+namespace fsi {
+
+// A user mistake (bad option, missing file, ...): reported as one line, exit code 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A numerical failure (diverged Newton, inverted cell): exit code 3.
+struct SolveError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct PetscFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void throw_petsc(PetscErrorCode ierr, const char *file, int line);
+
+} // namespace fsi
+
+// Call a PETSc function from C++ code that does not return PetscErrorCode.
+#define FSI_CALL(expr)                                                                             \
+  do {                                                                                             \
+    PetscErrorCode fsi_ierr_ = (expr);                                                             \
+    if (fsi_ierr_) ::fsi::throw_petsc(fsi_ierr_, __FILE__, __LINE__);                              \
+  } while (0)

@@ -1,0 +1,45 @@
+// Incompressible Navier-Stokes in ALE form on the mesh at t_{n+alpha_f} (paper eqs. 1, 2, 8):
+//   rho (dv/dt|_X + ((v - w) . grad) v) - div sigma = 0,  div v = 0,
+//   sigma = -p I + mu (grad v + grad v^T),
+// P2 velocity / P1 pressure, generalized-alpha in time (velocity at n+af, acceleration at n+am,
+// pressure at n+1; continuity div v_{n+1} = 0 on the mesh of t_{n+1}, so that each step's
+// velocity is divergence-free on its own configuration), exact Newton Jacobian.  Options (prefix -fluid_):
+//   region NAME (physical volume, default "fluid"), rho [kg/m^3], mu [Pa s],
+//   model navier_stokes|stokes (stokes skips convection), quad_degree (default 4).
+#pragma once
+#include "fsi/mesh.hpp"
+#include "fsi/p2tet.hpp"
+#include "fsi/physics_module.hpp"
+#include "fsi/space.hpp"
+
+namespace fsi {
+
+struct FluidParams {
+  std::string region = "fluid";
+  double rho = 1000, mu = 0.003;
+  bool stokes = false;
+  int quad_degree = 4;
+  static FluidParams from_options();
+};
+
+class FluidModule : public PhysicsModule {
+public:
+  FluidModule(const Space &space, const Mesh &mesh, const FluidParams &p);
+  std::string name() const override { return p_.stokes ? "fluid (Stokes)" : "fluid (Navier-Stokes, ALE)"; }
+  void add_residual(const StepContext &ctx, PetscScalar *F) override;
+  void add_jacobian(const StepContext &ctx, Mat J) override;
+  PetscInt n_cells() const override { return (PetscInt)cells_.size(); }
+  const FluidParams &params() const { return p_; }
+  const std::vector<PetscInt> &cells() const { return cells_; }
+
+private:
+  struct Element; // gathered nodal data of one cell
+  void gather(const StepContext &ctx, PetscInt k, Element &e) const;
+  const Space &space_;
+  FluidParams p_;
+  std::vector<PetscInt> cells_; // local cell indices (0-based)
+  QuadRule rule_;
+  std::vector<std::array<double, 10>> N_; // P2 values per quadrature point
+};
+
+} // namespace fsi

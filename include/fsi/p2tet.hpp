@@ -1,0 +1,48 @@
+// Reference P2/P1 Lagrange elements on straight-sided tetrahedra and triangles, in barycentric
+// coordinates, with symmetric quadrature from PETSc (MINSYM rules).  Node numbering used by all
+// our kernels: 4 vertices (0-3), then 6 edges, edge k joining vertices EDGE[k][0], EDGE[k][1].
+#pragma once
+#include "fsi/common.hpp"
+#include <array>
+#include <vector>
+
+namespace fsi {
+
+struct QuadRule {
+  std::vector<std::array<double, 4>> lambda; // barycentric coords (3 used on triangles)
+  std::vector<double> weight;                // sums to the reference measure: 1/6 tet, 1/2 tri
+};
+
+QuadRule tet_rule(int degree);
+QuadRule tri_rule(int degree);
+
+constexpr int TET_EDGE[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+constexpr int TRI_EDGE[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+
+// Affine tetrahedron: physical gradients of barycentric coordinates and |det J| (= 6 volume).
+struct TetGeometry {
+  double grad_lambda[4][3];
+  double detJ; // signed
+  double absdet;
+  void set(const double X[4][3]);
+};
+
+// P2 values and physical gradients at a point with barycentric coordinates l.
+inline void p2_tet(const double l[4], const double gl[4][3], double N[10], double dN[10][3]) {
+  for (int i = 0; i < 4; ++i) {
+    N[i] = l[i] * (2 * l[i] - 1);
+    for (int d = 0; d < 3; ++d) dN[i][d] = (4 * l[i] - 1) * gl[i][d];
+  }
+  for (int k = 0; k < 6; ++k) {
+    const int a = TET_EDGE[k][0], b = TET_EDGE[k][1];
+    N[4 + k] = 4 * l[a] * l[b];
+    for (int d = 0; d < 3; ++d) dN[4 + k][d] = 4 * (l[a] * gl[b][d] + l[b] * gl[a][d]);
+  }
+}
+
+inline void p2_tri(const double l[3], double N[6]) {
+  for (int i = 0; i < 3; ++i) N[i] = l[i] * (2 * l[i] - 1);
+  for (int k = 0; k < 3; ++k) N[3 + k] = 4 * l[TRI_EDGE[k][0]] * l[TRI_EDGE[k][1]];
+}
+
+} // namespace fsi

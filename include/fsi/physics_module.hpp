@@ -1,0 +1,19 @@
+// A physics module contributes element residuals and Jacobians on its region.  The scene decides
+// which modules exist; the problem sums what they add.  A module that is not created costs nothing.
+#pragma once
+#include "fsi/step_context.hpp"
+#include <string>
+
+namespace fsi {
+
+struct PhysicsModule {
+  virtual ~PhysicsModule() = default;
+  virtual std::string name() const = 0;
+  // Add this module's residual into the local array F (size Space::n_local).
+  virtual void add_residual(const StepContext &ctx, PetscScalar *F) = 0;
+  // Add this module's Jacobian into J (local indices, ADD_VALUES); rows of Dirichlet dofs skipped.
+  virtual void add_jacobian(const StepContext &ctx, Mat J) = 0;
+  virtual PetscInt n_cells() const = 0;
+};
+
+} // namespace fsi

@@ -1,0 +1,95 @@
+// The nonlinear problem of one time step and the generalized-alpha time integrator around it.
+// Unknown U = (v, p) at t_{n+1}; history V_n = U_n and A_n = dU/dt at t_n (paper eq. 9):
+//   a_{n+1} = (v_{n+1} - v_n) / (gamma dt) - (1 - gamma) / gamma a_n,
+//   alpha_m = (3 - rho_inf) / (2 (1 + rho_inf)), alpha_f = 1 / (1 + rho_inf),
+//   gamma = 1/2 + alpha_m - alpha_f  (second order, rho_inf in [0, 1]).
+// Newton (SNES) solves R(U) = 0 with our assembled exact Jacobian; every solver choice is a PETSc
+// option.  Dirichlet dofs are rows u - g = 0 with identity Jacobian rows.
+#pragma once
+#include "fsi/analytic.hpp"
+#include "fsi/boundary.hpp"
+#include "fsi/fluid.hpp"
+#include "fsi/mesh_motion.hpp"
+#include "fsi/physics_module.hpp"
+#include "fsi/space.hpp"
+#include <memory>
+#include <vector>
+
+namespace fsi {
+
+struct TimeParams {
+  bool steady = false;
+  double dt = 1, t_end = 1, rho_inf = 0.5;
+  long max_steps = 1;
+  static TimeParams from_options();
+};
+
+struct StepStats {
+  PetscInt newton = 0, krylov = 0;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+};
+
+struct CostCounters {
+  long residuals = 0, jacobians = 0;
+  double residual_time = 0, jacobian_time = 0;
+};
+
+class Problem {
+public:
+  Problem(const Mesh &mesh, const Space &space, const TimeParams &tp);
+  ~Problem();
+  void add_module(std::unique_ptr<PhysicsModule> m) { modules_.push_back(std::move(m)); }
+  void set_boundaries(Boundaries *b) { bcs_ = b; }
+  void set_mesh_motion(std::unique_ptr<MeshMotion> m) { motion_ = std::move(m); }
+  void set_exact(const ExactFlow *e) { exact_ = e; }
+  void setup_solver(); // after modules and boundaries
+
+  // Initial state at t = 0: rest, or the exact flow (-ic rest|exact).
+  void initialize(const std::string &ic);
+  // Advance one step of size dt (or solve the steady problem).  Returns Newton statistics.
+  StepStats step();
+
+  double time() const { return t_; }
+  long step_index() const { return n_; }
+  Vec solution() const { return U_; }
+  // Local (ghosted) copy of the solution, and the current vertex coordinates X + d_m(t).
+  void solution_local(Vec &loc) const;
+  const std::vector<double> &coordinates() const { return Xn_; }
+  // The pressure unknown of the last step is the multiplier of the momentum balance at
+  // t_{n+alpha_f} on that configuration: compare it there (second order in time).
+  const std::vector<double> &coordinates_af() const { return Xaf_.empty() ? Xn_ : Xaf_; }
+  double time_af() const { return ctx_.t_af; }
+  const std::vector<std::unique_ptr<PhysicsModule>> &modules() const { return modules_; }
+  const MeshMotion *mesh_motion() const { return motion_.get(); }
+  const CostCounters &cost() const { return cost_; }
+  const TimeParams &time_params() const { return tp_; }
+
+  // SNES callbacks
+  void residual(Vec U, Vec F);
+  void jacobian(Vec U, Mat J);
+
+private:
+  void mesh_at(double t, std::vector<double> &disp) const;
+  void set_context(double t_np1);
+  const Mesh &mesh_;
+  const Space &space_;
+  TimeParams tp_;
+  double alpha_m_ = 1, alpha_f_ = 1, gamma_ = 1;
+  std::vector<std::unique_ptr<PhysicsModule>> modules_;
+  Boundaries *bcs_ = nullptr;
+  std::unique_ptr<MeshMotion> motion_;
+  const ExactFlow *exact_ = nullptr;
+
+  Vec U_ = nullptr, Vn_ = nullptr, An_ = nullptr, F_ = nullptr;
+  Vec Uloc_ = nullptr, Vloc_ = nullptr, Aloc_ = nullptr, Floc_ = nullptr;
+  Mat J_ = nullptr;
+  SNES snes_ = nullptr;
+  double t_ = 0;
+  long n_ = 0;
+  std::vector<double> dn_, dnp1_, Xn_, Xaf_, Xnp1_, W_;
+  std::vector<std::pair<PetscInt, double>> bc_values_;
+  StepContext ctx_;
+  CostCounters cost_;
+};
+
+} // namespace fsi

@@ -1,0 +1,60 @@
+// The discrete space: P2 velocity (vertices + edges, 3 components) and P1 pressure (vertices) on
+// the whole DMPlex, in one PetscSection with fields "velocity" and "pressure".  Element kernels
+// never call DMPlex in their loops: this class precomputes, per local cell, the local dof indices
+// of its 10 velocity nodes and 4 pressure nodes in our node order (see p2tet.hpp), and the
+// reference vertex coordinates.  Boundary faces and Dirichlet nodes are listed by boundary name.
+#pragma once
+#include "fsi/mesh.hpp"
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+struct BoundaryFace {
+  PetscInt cell;      // local cell index (0-based among cells)
+  int vertex[3];      // local vertex indices of the face, in P2 triangle node order
+  int opposite;       // local vertex index of the cell vertex not on the face
+  PetscInt vdof[6];   // first local velocity dof of the 6 face nodes (3 vertices, 3 edges)
+  PetscInt pdof[3];   // local pressure dofs of the face vertices
+};
+
+struct DofNode {
+  PetscInt dof;   // first local dof (velocity: x component; pressure: the dof)
+  int va, vb;     // local vertex indices; vb = -1 for a vertex node, else edge midpoint
+};
+
+struct Space {
+  DM dm = nullptr; // the mesh DM, carrying our section
+  PetscInt cStart = 0, cEnd = 0, vStart = 0, vEnd = 0, eStart = 0, eEnd = 0;
+  PetscInt n_local = 0;                 // local (ghosted) dof count
+  PetscInt n_owned = 0, rstart = 0;     // owned global dofs
+  PetscInt n_velocity = 0, n_pressure = 0; // global dof counts per field
+  std::vector<int> cell_vertex;         // 4 per cell
+  std::vector<PetscInt> cell_vdof;      // 10 per cell: first local dof of each velocity node
+  std::vector<PetscInt> cell_pdof;      // 4 per cell
+  std::vector<double> X;                // 3 per local vertex, reference coordinates
+  std::vector<PetscInt> local_to_global; // per local dof, global index
+  IS is_velocity = nullptr, is_pressure = nullptr;
+
+  void build(const Mesh &mesh);
+  ~Space();
+  PetscInt n_cells() const { return cEnd - cStart; }
+  PetscInt n_vertices() const { return vEnd - vStart; }
+  bool owned(PetscInt local_dof) const {
+    PetscInt g = local_to_global[local_dof];
+    return g >= rstart && g < rstart + n_owned;
+  }
+  // Faces of boundary `name` (label from the mesh, faces with one supporting cell).
+  std::vector<BoundaryFace> boundary_faces(const Mesh &mesh, const std::string &name) const;
+  // Velocity nodes (vertices and edges) in the closure of boundary `name`, consistent across
+  // ranks: a node shared with a rank that lacks the face is listed there too.
+  std::vector<DofNode> boundary_velocity_nodes(const Mesh &mesh, const std::string &name) const;
+  // Local pressure dof of the vertex with the smallest global pressure index, or -1 if this rank
+  // does not see it; `vertex` receives its local vertex index.
+  PetscInt pinned_pressure_dof(int &vertex) const;
+
+};
+
+} // namespace fsi

@@ -1,0 +1,264 @@
+#include "fsi/space.hpp"
+#include "fsi/p2tet.hpp"
+
+#include <algorithm>
+
+namespace fsi {
+
+Space::~Space() {
+  if (is_velocity) ISDestroy(&is_velocity);
+  if (is_pressure) ISDestroy(&is_pressure);
+}
+
+void Space::build(const Mesh &mesh) {
+  dm = mesh.dm;
+  PetscInt pStart, pEnd;
+  FSI_CALL(DMPlexGetChart(dm, &pStart, &pEnd));
+  FSI_CALL(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  FSI_CALL(DMPlexGetDepthStratum(dm, 1, &eStart, &eEnd));
+  FSI_CALL(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+
+  PetscSection s;
+  FSI_CALL(PetscSectionCreate(PETSC_COMM_SELF, &s));
+  FSI_CALL(PetscSectionSetNumFields(s, 2));
+  FSI_CALL(PetscSectionSetFieldName(s, 0, "velocity"));
+  FSI_CALL(PetscSectionSetFieldName(s, 1, "pressure"));
+  FSI_CALL(PetscSectionSetFieldComponents(s, 0, 3));
+  FSI_CALL(PetscSectionSetFieldComponents(s, 1, 1));
+  FSI_CALL(PetscSectionSetChart(s, pStart, pEnd));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    FSI_CALL(PetscSectionSetDof(s, v, 4));
+    FSI_CALL(PetscSectionSetFieldDof(s, v, 0, 3));
+    FSI_CALL(PetscSectionSetFieldDof(s, v, 1, 1));
+  }
+  for (PetscInt e = eStart; e < eEnd; ++e) {
+    FSI_CALL(PetscSectionSetDof(s, e, 3));
+    FSI_CALL(PetscSectionSetFieldDof(s, e, 0, 3));
+  }
+  FSI_CALL(PetscSectionSetUp(s));
+  FSI_CALL(DMSetLocalSection(dm, s));
+  FSI_CALL(PetscSectionDestroy(&s));
+  FSI_CALL(DMSetUp(dm));
+
+  PetscSection ls, gs;
+  FSI_CALL(DMGetLocalSection(dm, &ls));
+  FSI_CALL(DMGetGlobalSection(dm, &gs));
+  FSI_CALL(PetscSectionGetStorageSize(ls, &n_local));
+
+  // Local -> global dof map, from the global section (negative offsets encode ghosts).
+  Vec g;
+  FSI_CALL(DMGetGlobalVector(dm, &g));
+  FSI_CALL(VecGetOwnershipRange(g, &rstart, nullptr));
+  FSI_CALL(VecGetLocalSize(g, &n_owned));
+  FSI_CALL(DMRestoreGlobalVector(dm, &g));
+  ISLocalToGlobalMapping l2g;
+  FSI_CALL(DMGetLocalToGlobalMapping(dm, &l2g));
+  local_to_global.resize(n_local);
+  for (PetscInt i = 0; i < n_local; ++i) local_to_global[i] = i;
+  FSI_CALL(ISLocalToGlobalMappingApply(l2g, n_local, local_to_global.data(), local_to_global.data()));
+
+  // Field index sets over owned dofs.
+  std::vector<PetscInt> iv, ip;
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt dof, off;
+    FSI_CALL(PetscSectionGetDof(gs, p, &dof));
+    FSI_CALL(PetscSectionGetOffset(gs, p, &off));
+    if (dof <= 0 || off < 0) continue; // not owned
+    PetscInt fo;
+    FSI_CALL(PetscSectionGetFieldOffset(gs, p, 0, &fo));
+    for (int c = 0; c < 3; ++c) iv.push_back(fo + c);
+    if (p >= vStart && p < vEnd) {
+      FSI_CALL(PetscSectionGetFieldOffset(gs, p, 1, &fo));
+      ip.push_back(fo);
+    }
+  }
+  MPI_Comm comm = PetscObjectComm((PetscObject)dm);
+  FSI_CALL(ISCreateGeneral(comm, (PetscInt)iv.size(), iv.data(), PETSC_COPY_VALUES, &is_velocity));
+  FSI_CALL(ISSetBlockSize(is_velocity, 3));
+  FSI_CALL(ISCreateGeneral(comm, (PetscInt)ip.size(), ip.data(), PETSC_COPY_VALUES, &is_pressure));
+  FSI_CALL(ISGetSize(is_velocity, &n_velocity));
+  FSI_CALL(ISGetSize(is_pressure, &n_pressure));
+
+  // Reference coordinates of local vertices.
+  Vec coords;
+  PetscSection cs;
+  const PetscScalar *ca;
+  FSI_CALL(DMGetCoordinatesLocal(dm, &coords));
+  FSI_CALL(DMGetCoordinateSection(dm, &cs));
+  FSI_CALL(VecGetArrayRead(coords, &ca));
+  X.resize(3 * n_vertices());
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    FSI_CALL(PetscSectionGetOffset(cs, v, &off));
+    for (int d = 0; d < 3; ++d) X[3 * (v - vStart) + d] = PetscRealPart(ca[off + d]);
+  }
+  FSI_CALL(VecRestoreArrayRead(coords, &ca));
+
+  // Per-cell node tables in our node order.
+  const PetscInt nc = n_cells();
+  cell_vertex.resize(4 * nc);
+  cell_vdof.resize(10 * nc);
+  cell_pdof.resize(4 * nc);
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt ncl, *cl = nullptr;
+    FSI_CALL(DMPlexGetTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &cl));
+    int nv = 0;
+    PetscInt verts[4], edges[6];
+    int ne = 0;
+    for (PetscInt i = 0; i < ncl; ++i) {
+      PetscInt p = cl[2 * i];
+      if (p >= vStart && p < vEnd) verts[nv++] = p;
+      else if (p >= eStart && p < eEnd) edges[ne++] = p;
+    }
+    FSI_CALL(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &cl));
+    if (nv != 4 || ne != 6) throw InputError("the mesh has a non-tetrahedral cell: fsi_app needs tetrahedra");
+    const PetscInt k = c - cStart;
+    for (int i = 0; i < 4; ++i) {
+      cell_vertex[4 * k + i] = (int)(verts[i] - vStart);
+      PetscInt off;
+      FSI_CALL(PetscSectionGetFieldOffset(ls, verts[i], 0, &off));
+      cell_vdof[10 * k + i] = off;
+      FSI_CALL(PetscSectionGetFieldOffset(ls, verts[i], 1, &off));
+      cell_pdof[4 * k + i] = off;
+    }
+    for (int j = 0; j < 6; ++j) {
+      const PetscInt *cone;
+      FSI_CALL(DMPlexGetCone(dm, edges[j], &cone));
+      for (int m = 0; m < 6; ++m) {
+        PetscInt a = verts[TET_EDGE[m][0]], b = verts[TET_EDGE[m][1]];
+        if ((cone[0] == a && cone[1] == b) || (cone[0] == b && cone[1] == a)) {
+          PetscInt off;
+          FSI_CALL(PetscSectionGetFieldOffset(ls, edges[j], 0, &off));
+          cell_vdof[10 * k + 4 + m] = off;
+        }
+      }
+    }
+  }
+}
+
+std::vector<BoundaryFace> Space::boundary_faces(const Mesh &mesh, const std::string &name) const {
+  DMLabel l = mesh.label(name);
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(dm, &ls));
+  PetscInt fStart, fEnd;
+  FSI_CALL(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+  std::vector<BoundaryFace> out;
+  for (PetscInt f = fStart; f < fEnd; ++f) {
+    PetscInt val;
+    FSI_CALL(DMLabelGetValue(l, f, &val));
+    if (val < 0) continue;
+    PetscInt ns;
+    const PetscInt *supp;
+    FSI_CALL(DMPlexGetSupportSize(dm, f, &ns));
+    FSI_CALL(DMPlexGetSupport(dm, f, &supp));
+    if (ns < 1) continue;
+    // Interfaces between two cells are not boundaries of the whole mesh; the caller decides by
+    // region (later: fluid side only).  Here we take the first supporting cell.
+    BoundaryFace bf;
+    bf.cell = supp[0] - cStart;
+    PetscInt ncl, *cl = nullptr;
+    FSI_CALL(DMPlexGetTransitiveClosure(dm, f, PETSC_TRUE, &ncl, &cl));
+    int nv = 0, ne = 0;
+    PetscInt verts[3], edges[3];
+    for (PetscInt i = 0; i < ncl; ++i) {
+      PetscInt p = cl[2 * i];
+      if (p >= vStart && p < vEnd) verts[nv++] = p;
+      else if (p >= eStart && p < eEnd) edges[ne++] = p;
+    }
+    FSI_CALL(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &ncl, &cl));
+    for (int i = 0; i < 3; ++i) {
+      bf.vertex[i] = (int)(verts[i] - vStart);
+      FSI_CALL(PetscSectionGetFieldOffset(ls, verts[i], 0, &bf.vdof[i]));
+      FSI_CALL(PetscSectionGetFieldOffset(ls, verts[i], 1, &bf.pdof[i]));
+    }
+    for (int j = 0; j < 3; ++j) {
+      const PetscInt *cone;
+      FSI_CALL(DMPlexGetCone(dm, edges[j], &cone));
+      for (int m = 0; m < 3; ++m) {
+        PetscInt a = verts[TRI_EDGE[m][0]], b = verts[TRI_EDGE[m][1]];
+        if ((cone[0] == a && cone[1] == b) || (cone[0] == b && cone[1] == a))
+          FSI_CALL(PetscSectionGetFieldOffset(ls, edges[j], 0, &bf.vdof[3 + m]));
+      }
+    }
+    bf.opposite = -1;
+    for (int i = 0; i < 4; ++i) {
+      int v = cell_vertex[4 * bf.cell + i];
+      if (v != bf.vertex[0] && v != bf.vertex[1] && v != bf.vertex[2]) bf.opposite = v;
+    }
+    out.push_back(bf);
+  }
+  return out;
+}
+
+std::vector<DofNode> Space::boundary_velocity_nodes(const Mesh &mesh, const std::string &name) const {
+  DMLabel src = mesh.label(name);
+  // A completed copy of the face label: closure points, synchronised over the point SF.
+  const std::string cname = "__closure_" + name;
+  PetscBool has;
+  FSI_CALL(DMHasLabel(dm, cname.c_str(), &has));
+  DMLabel l;
+  if (!has) {
+    FSI_CALL(DMCreateLabel(dm, cname.c_str()));
+    FSI_CALL(DMGetLabel(dm, cname.c_str(), &l));
+    PetscInt fStart, fEnd;
+    FSI_CALL(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+    for (PetscInt f = fStart; f < fEnd; ++f) {
+      PetscInt val;
+      FSI_CALL(DMLabelGetValue(src, f, &val));
+      if (val >= 0) FSI_CALL(DMLabelSetValue(l, f, 1));
+    }
+    FSI_CALL(DMPlexLabelComplete(dm, l));
+  }
+  FSI_CALL(DMGetLabel(dm, cname.c_str(), &l));
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(dm, &ls));
+  std::vector<DofNode> out;
+  for (PetscInt p = vStart; p < vEnd; ++p) {
+    PetscInt val;
+    FSI_CALL(DMLabelGetValue(l, p, &val));
+    if (val != 1) continue;
+    DofNode n;
+    FSI_CALL(PetscSectionGetFieldOffset(ls, p, 0, &n.dof));
+    n.va = (int)(p - vStart);
+    n.vb = -1;
+    out.push_back(n);
+  }
+  for (PetscInt p = eStart; p < eEnd; ++p) {
+    PetscInt val;
+    FSI_CALL(DMLabelGetValue(l, p, &val));
+    if (val != 1) continue;
+    DofNode n;
+    const PetscInt *cone;
+    FSI_CALL(DMPlexGetCone(dm, p, &cone));
+    FSI_CALL(PetscSectionGetFieldOffset(ls, p, 0, &n.dof));
+    n.va = (int)(cone[0] - vStart);
+    n.vb = (int)(cone[1] - vStart);
+    out.push_back(n);
+  }
+  return out;
+}
+
+PetscInt Space::pinned_pressure_dof(int &vertex) const {
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(dm, &ls));
+  PetscInt best = PETSC_MAX_INT;
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &off));
+    best = std::min(best, local_to_global[off]);
+  }
+  PetscInt gbest;
+  MPI_Allreduce(&best, &gbest, 1, MPIU_INT, MPI_MIN, PetscObjectComm((PetscObject)dm));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscInt off;
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &off));
+    if (local_to_global[off] == gbest) {
+      vertex = (int)(v - vStart);
+      return off;
+    }
+  }
+  vertex = -1;
+  return -1;
+}
+
+} // namespace fsi

@@ -1,0 +1,171 @@
+#include "fsi/output.hpp"
+
+#include <cmath>
+#include <petscviewerhdf5.h>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace fsi {
+
+static std::string quote(const std::string &s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (c == '\n') {
+      o += "\\n";
+      continue;
+    }
+    o += c;
+  }
+  return o + "\"";
+}
+
+Json &Json::set(const std::string &k, double v) {
+  char b[64];
+  if (std::isfinite(v)) std::snprintf(b, sizeof b, "%.10g", v);
+  else std::snprintf(b, sizeof b, "null");
+  items_.emplace_back(k, b);
+  return *this;
+}
+Json &Json::set(const std::string &k, long v) {
+  items_.emplace_back(k, std::to_string(v));
+  return *this;
+}
+Json &Json::set(const std::string &k, bool v) {
+  items_.emplace_back(k, v ? "true" : "false");
+  return *this;
+}
+Json &Json::set(const std::string &k, const std::string &v) {
+  items_.emplace_back(k, quote(v));
+  return *this;
+}
+Json &Json::set(const std::string &k, const Json &v) {
+  items_.emplace_back(k, "\x01" + v.str(0)); // marker: nested object, re-indented in str()
+  return *this;
+}
+Json &Json::set(const std::string &k, const std::vector<std::string> &v) {
+  std::string s = "[";
+  for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + quote(v[i]);
+  items_.emplace_back(k, s + "]");
+  return *this;
+}
+
+std::string Json::str(int indent) const {
+  std::string pad(indent + 2, ' '), out = "{\n";
+  for (size_t i = 0; i < items_.size(); ++i) {
+    std::string v = items_[i].second;
+    if (!v.empty() && v[0] == '\x01') { // nested: indent its lines
+      v = v.substr(1);
+      std::string r;
+      for (char c : v) r += c == '\n' ? std::string("\n") + pad : std::string(1, c);
+      v = r;
+    }
+    out += pad + quote(items_[i].first) + ": " + v + (i + 1 < items_.size() ? ",\n" : "\n");
+  }
+  return out + std::string(indent, ' ') + "}";
+}
+
+Output::Output(MPI_Comm comm, const std::string &dir) : comm_(comm), dir_(dir) {
+  MPI_Comm_rank(comm, &rank_);
+  int ok = 1;
+  if (rank_ == 0) {
+    std::string cmd = "mkdir -p '" + dir + "' 2>/dev/null";
+    ok = std::system(cmd.c_str()) == 0 && access(dir.c_str(), W_OK) == 0;
+    if (ok) {
+      std::remove((dir + "/summary.json").c_str());
+      std::remove((dir + "/monitor.csv").c_str());
+    }
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+  if (!ok)
+    throw InputError("output directory " + dir + " cannot be created or written: choose another -out_dir");
+}
+
+Output::~Output() {
+  if (monitor_) std::fclose(monitor_);
+  if (fields_) PetscViewerDestroy(&fields_);
+}
+
+void Output::write_atomic(const std::string &name, const std::string &content) const {
+  if (rank_ != 0) return;
+  const std::string path = dir_ + "/" + name, tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << content;
+    if (!f) throw InputError("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError("cannot rename " + tmp);
+}
+
+void Output::write_options() const {
+  char *all = nullptr;
+  FSI_CALL(PetscOptionsGetAll(nullptr, &all));
+  std::string s(all ? all : "");
+  FSI_CALL(PetscFree(all));
+  std::string o;
+  for (char c : s) o += c;
+  // one option per line
+  std::string lines;
+  std::stringstream ss(o);
+  std::string tok, cur;
+  while (ss >> tok) {
+    if (tok[0] == '-' && !cur.empty() && !(tok.size() > 1 && (std::isdigit(tok[1]) || tok[1] == '.'))) {
+      lines += cur + "\n";
+      cur.clear();
+    }
+    cur += (cur.empty() ? "" : " ") + tok;
+  }
+  if (!cur.empty()) lines += cur + "\n";
+  write_atomic("options.txt", lines);
+}
+
+void Output::open_monitor(const std::vector<std::string> &columns) {
+  if (rank_ != 0) return;
+  monitor_ = std::fopen((dir_ + "/monitor.csv.partial").c_str(), "w");
+  if (!monitor_) throw InputError("cannot write " + dir_ + "/monitor.csv.partial");
+  std::fprintf(monitor_, "step,time,newton,krylov,step_seconds");
+  for (auto &c : columns) std::fprintf(monitor_, ",%s", c.c_str());
+  std::fprintf(monitor_, "\n");
+}
+
+void Output::monitor_row(const std::vector<double> &v) {
+  if (!monitor_) return;
+  for (size_t i = 0; i < v.size(); ++i) std::fprintf(monitor_, i ? ",%.12g" : "%.12g", v[i]);
+  std::fprintf(monitor_, "\n");
+  std::fflush(monitor_);
+}
+
+void Output::close_monitor() {
+  if (!monitor_) return;
+  std::fclose(monitor_);
+  monitor_ = nullptr;
+  std::rename((dir_ + "/monitor.csv.partial").c_str(), (dir_ + "/monitor.csv").c_str());
+}
+
+void Output::open_fields(DM dm) {
+  const std::string path = dir_ + "/fields.h5";
+  FSI_CALL(PetscViewerHDF5Open(comm_, path.c_str(), FILE_MODE_WRITE, &fields_));
+  FSI_CALL(DMView(dm, fields_));
+}
+
+void Output::write_fields(DM dm, Vec U, long step, double t) {
+  if (!fields_) return;
+  FSI_CALL(DMSetOutputSequenceNumber(dm, (PetscInt)step, t));
+  FSI_CALL(VecView(U, fields_));
+}
+
+void Output::close_fields() {
+  if (!fields_) return;
+  FSI_CALL(PetscViewerDestroy(&fields_));
+  if (rank_ == 0) {
+    // PETSc's own XDMF generator (ships with petsc-dev); it writes fields.xmf beside the .h5.
+    std::string cmd = "cd '" + dir_ + "' && /usr/bin/python3 /usr/lib/petsc/lib/petsc/bin/petsc_gen_xdmf.py fields.h5 >/dev/null 2>&1 && mv fields.xmf fields.xdmf";
+    if (std::system(cmd.c_str()) != 0)
+      std::fprintf(stderr, "fsi_app: warning: could not write %s/fields.xdmf\n", dir_.c_str());
+  }
+}
+
+void Output::write_summary(const Json &j) const { write_atomic("summary.json", j.str() + "\n"); }
+
+} // namespace fsi

@@ -1,0 +1,227 @@
+// fsi_app: blood flow and deformable tissue, monolithic ALE finite elements on DMPlex.
+//   mpirun -n 2 fsi_app -options_file examples/<scene>/<scene>.opts [-options_file petsc_options/X.opts]
+// The scene (a PETSc options file) switches physics on; what it does not ask for is not built.
+// The program reads as the algorithm: scene -> mesh -> space -> physics -> time loop -> outputs.
+#include "fsi/analytic.hpp"
+#include "fsi/boundary.hpp"
+#include "fsi/fluid.hpp"
+#include "fsi/mesh.hpp"
+#include "fsi/monitors.hpp"
+#include "fsi/options.hpp"
+#include "fsi/output.hpp"
+#include "fsi/problem.hpp"
+#include "fsi/space.hpp"
+#include "fsi/stages.hpp"
+
+#include <cmath>
+#include <memory>
+#include <sys/resource.h>
+
+using namespace fsi;
+
+static const char help[] =
+    "fsi_app: monolithic ALE fluid-structure interaction (P2P1 Navier-Stokes, hyperelastic solid).\n"
+    "Scene options: -scene_name, -physics fluid, -mesh_geo/-mesh_h or -mesh_file, -fluid_*, -bc_*,\n"
+    "-ts_scheme alpha|steady, -ts_dt, -ts_max_steps|-ts_max_time, -ts_alpha_radius, -ic rest|exact,\n"
+    "-exact_solution, -ale_motion, -monitor_surfaces, -probe_points, -out_dir, -out_fields_every.\n";
+
+namespace {
+
+struct RunTotals {
+  long steps = 0, newton = 0, krylov = 0, newton_max = 0, krylov_max = 0;
+  double wall = 0;
+};
+
+double peak_memory_mb() {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;
+}
+
+void progress(MPI_Comm comm, const Problem &pb, const StepStats &s, double step_s, double elapsed) {
+  const long n = pb.step_index(), N = pb.time_params().max_steps;
+  const double eta = elapsed / n * (N - n);
+  PetscPrintf(comm, "step %5ld/%ld  t = %.4e s  newton %2d  krylov %4d  %.2f s/step  elapsed %.1f s  eta %.1f s\n",
+              n, N, pb.time(), (int)s.newton, (int)s.krylov, step_s, elapsed, eta);
+}
+
+int run(MPI_Comm comm) {
+  const double t_start = MPI_Wtime();
+  Stages &st = Stages::get();
+  FSI_CALL(PetscLogStagePush(st.setup));
+
+  // Scene: what physics, where the results go.
+  const std::string scene = opt::string("scene_name", "scene");
+  const auto physics = opt::list("physics");
+  if (physics.empty()) throw InputError("the scene switches no physics on: give -physics fluid");
+  bool want_fluid = false;
+  for (auto &p : physics) {
+    if (p == "fluid") want_fluid = true;
+    else if (p == "solid" || p == "ale")
+      throw InputError("-physics " + p + " is not available yet in this build: use -physics fluid");
+    else throw InputError("-physics has unknown value '" + p + "'; use: fluid");
+  }
+  Output out(comm, opt::string("out_dir", "results/" + scene));
+  const long fields_every = opt::integer("out_fields_every", 0);
+
+  // Mesh and discrete space.
+  Mesh mesh;
+  load_mesh(comm, mesh);
+  Space space;
+  space.build(mesh);
+
+  // Physics modules switched on by the scene.
+  const TimeParams tp = TimeParams::from_options();
+  Problem pb(mesh, space, tp);
+  FluidModule *fluid = nullptr;
+  std::unique_ptr<ExactFlow> exact;
+  if (want_fluid) {
+    auto f = std::make_unique<FluidModule>(space, mesh, FluidParams::from_options());
+    fluid = f.get();
+    exact = make_exact_flow(fluid->params().rho, fluid->params().mu);
+    pb.add_module(std::move(f));
+  }
+  pb.set_exact(exact.get());
+  pb.set_mesh_motion(make_mesh_motion(space));
+  Boundaries bcs;
+  bcs.setup(mesh, space, exact.get(), fluid ? fluid->params().mu : 0.0);
+  pb.set_boundaries(&bcs);
+  pb.setup_solver();
+  Monitors mon;
+  mon.setup(mesh, space, fluid, exact.get());
+  const std::string ic = opt::choice("ic", "rest", {"rest", "exact"});
+  pb.initialize(ic);
+
+  int size;
+  MPI_Comm_size(comm, &size);
+  PetscPrintf(comm, "fsi_app: scene '%s', %d rank(s), mesh %s: %d cells, %d vertices; dofs velocity %d, pressure %d\n",
+              scene.c_str(), size, mesh.source.c_str(), (int)mesh.cells_global, (int)mesh.vertices_global,
+              (int)space.n_velocity, (int)space.n_pressure);
+  for (auto &m : pb.modules())
+    PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(), (int)m->n_cells());
+  out.write_options();
+  out.open_monitor(mon.columns());
+  if (fields_every > 0) out.open_fields(space.dm);
+  FSI_CALL(PetscLogStagePop());
+  const double setup_time = MPI_Wtime() - t_start;
+
+  // Time loop.
+  RunTotals tot;
+  bool converged = true;
+  std::string reason = "completed";
+  const double loop_start = MPI_Wtime();
+  double output_time = 0;
+  try {
+    while (pb.step_index() < tp.max_steps) {
+      const double t0 = MPI_Wtime();
+      StepStats s = pb.step();
+      const double step_s = MPI_Wtime() - t0;
+      tot.steps++;
+      tot.newton += s.newton;
+      tot.krylov += s.krylov;
+      tot.newton_max = std::max<long>(tot.newton_max, s.newton);
+      tot.krylov_max = std::max<long>(tot.krylov_max, s.krylov);
+      const double o0 = MPI_Wtime();
+      FSI_CALL(PetscLogStagePush(st.output));
+      std::vector<double> row = {(double)pb.step_index(), pb.time(), (double)s.newton, (double)s.krylov, step_s};
+      auto m = mon.evaluate(pb);
+      row.insert(row.end(), m.begin(), m.end());
+      out.monitor_row(row);
+      if (fields_every > 0 && pb.step_index() % fields_every == 0)
+        out.write_fields(space.dm, pb.solution(), pb.step_index(), pb.time());
+      FSI_CALL(PetscLogStagePop());
+      output_time += MPI_Wtime() - o0;
+      progress(comm, pb, s, step_s, MPI_Wtime() - loop_start);
+    }
+  } catch (SolveError &e) {
+    converged = false;
+    reason = e.what();
+    PetscPrintf(comm, "fsi_app: %s\n", e.what());
+  }
+  out.close_monitor();
+  out.close_fields();
+  tot.wall = MPI_Wtime() - t_start;
+
+  // Summary: what ran, its size, its cost, and the accuracy indicators the scene defines.
+  const CostCounters &c = pb.cost();
+  double mem = peak_memory_mb(), mem_max;
+  MPI_Allreduce(&mem, &mem_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  double jt = c.jacobian_time, jt_max, rt = c.residual_time, rt_max;
+  MPI_Allreduce(&jt, &jt_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(&rt, &rt_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  PetscInt fc = fluid ? fluid->n_cells() : 0, fc_g;
+  MPI_Allreduce(&fc, &fc_g, 1, MPIU_INT, MPI_SUM, comm);
+
+  std::vector<std::string> active;
+  for (auto &m : pb.modules()) active.push_back(m->name());
+  if (pb.mesh_motion()) active.push_back("mesh motion: " + pb.mesh_motion()->name());
+  Json dofs, times, iters, cost, j;
+  dofs.set("velocity", (long)space.n_velocity).set("pressure", (long)space.n_pressure)
+      .set("total", (long)(space.n_velocity + space.n_pressure));
+  times.set("total", tot.wall).set("setup", setup_time).set("jacobian_assembly", jt_max)
+      .set("residual_assembly", rt_max).set("output", output_time)
+      .set("per_step", tot.steps ? (tot.wall - setup_time) / tot.steps : 0.0);
+  iters.set("newton_total", tot.newton).set("newton_max_per_step", tot.newton_max)
+      .set("krylov_total", tot.krylov).set("krylov_max_per_step", tot.krylov_max)
+      .set("newton_mean_per_step", tot.steps ? double(tot.newton) / tot.steps : 0.0);
+  cost.set("jacobians", c.jacobians).set("residuals", c.residuals)
+      .set("jacobian_tets_per_second_per_rank",
+           jt_max > 0 ? double(fc_g) / size * c.jacobians / jt_max : 0.0)
+      .set("residual_tets_per_second_per_rank",
+           rt_max > 0 ? double(fc_g) / size * c.residuals / rt_max : 0.0)
+      .set("peak_memory_mb_per_rank_max", mem_max);
+  j.set("scene", scene).set("physics", active).set("ranks", size).set("mesh", mesh.source)
+      .set("cells", (long)mesh.cells_global).set("fluid_cells", (long)fc_g)
+      .set("vertices", (long)mesh.vertices_global).set("dofs", dofs)
+      .set("time_scheme", tp.steady ? "steady" : "generalized-alpha")
+      .set("dt", tp.dt).set("rho_inf", tp.rho_inf).set("steps", tot.steps).set("final_time", pb.time())
+      .set("iterations", iters).set("wall_time", times).set("cost", cost)
+      .set("converged", converged).set("reason", reason);
+  if (mon.has_exact() && tot.steps > 0) {
+    const ErrorNorms &e = mon.last_errors();
+    Json err;
+    err.set("velocity_l2", e.v_l2).set("pressure_l2", e.p_l2)
+        .set("velocity_l2_relative", e.v_l2 / e.v_norm).set("pressure_l2_relative", e.p_l2 / e.p_norm);
+    j.set("error_final", err);
+  }
+  out.write_summary(j);
+  PetscPrintf(comm, "fsi_app: %s: %ld steps, %ld Newton, %ld Krylov iterations, wall %.2f s "
+              "(setup %.2f, Jacobian %.2f, residual %.2f), peak memory %.0f MB/rank; results in %s\n",
+              converged ? "done" : "FAILED", tot.steps, tot.newton, tot.krylov, tot.wall, setup_time,
+              jt_max, rt_max, mem_max, out.dir().c_str());
+  return converged ? 0 : 3;
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  int code = 0;
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  try {
+    code = run(comm);
+  } catch (InputError &e) {
+    PetscPrintf(comm, "fsi_app: error: %s\n", e.what());
+    code = 2;
+  } catch (std::exception &e) {
+    PetscPrintf(comm, "fsi_app: failure: %s\n", e.what());
+    code = 4;
+  }
+  // Options nobody read are typos in scenes: an error, unless the user lets them pass.
+  PetscInt left = 0;
+  PetscOptionsLeftGet(nullptr, &left, nullptr, nullptr);
+  PetscBool allow = PETSC_FALSE;
+  PetscOptionsGetBool(nullptr, nullptr, "-allow_unused_options", &allow, nullptr);
+  if (code == 0 && left > 0 && !allow) {
+    char **names;
+    char **values;
+    PetscOptionsLeftGet(nullptr, &left, &names, &values);
+    std::string list;
+    for (PetscInt i = 0; i < left; ++i) list += std::string(i ? ", -" : "-") + names[i];
+    PetscOptionsLeftRestore(nullptr, &left, &names, &values);
+    PetscPrintf(comm, "fsi_app: error: option(s) nobody reads: %s (typo? or pass -allow_unused_options)\n", list.c_str());
+    code = 2;
+  }
+  PetscFinalize();
+  return code;
+}

@@ -1,0 +1,203 @@
+#include "fsi/mesh.hpp"
+#include "fsi/options.hpp"
+
+#include <fstream>
+#include <gmsh.h>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifndef FSI_SOURCE_DIR
+#define FSI_SOURCE_DIR "."
+#endif
+
+namespace fsi {
+
+Mesh::~Mesh() {
+  if (dm) DMDestroy(&dm);
+}
+
+static bool file_exists(const std::string &p) {
+  struct stat st;
+  return stat(p.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string resolve_path(const std::string &path) {
+  if (path.empty() || path[0] == '/' || file_exists(path)) return path;
+  std::string alt = std::string(FSI_SOURCE_DIR) + "/" + path;
+  return file_exists(alt) ? alt : path;
+}
+
+bool Mesh::has_group(const std::string &name) const {
+  PetscBool has = PETSC_FALSE;
+  FSI_CALL(DMHasLabel(dm, name.c_str(), &has));
+  int local = has ? 1 : 0, global = 0;
+  MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, PetscObjectComm((PetscObject)dm));
+  return global != 0;
+}
+
+DMLabel Mesh::label(const std::string &name) const {
+  if (!has_group(name)) throw InputError("mesh " + source + " has no physical group '" + name + "'");
+  PetscBool has = PETSC_FALSE;
+  FSI_CALL(DMHasLabel(dm, name.c_str(), &has));
+  if (!has) FSI_CALL(DMCreateLabel(dm, name.c_str())); // empty on this rank
+  DMLabel l;
+  FSI_CALL(DMGetLabel(dm, name.c_str(), &l));
+  return l;
+}
+
+void Mesh::require_groups(const std::vector<std::string> &names, const std::string &why) const {
+  std::vector<std::string> missing;
+  for (auto &n : names)
+    if (!has_group(n)) missing.push_back(n);
+  if (!missing.empty())
+    throw InputError("mesh " + source + " lacks physical group(s) " + opt::join(missing) +
+                     " needed by " + why + ": add them to the .geo (Physical Volume/Surface) or fix the name");
+}
+
+std::vector<PetscInt> Mesh::cells_in(const std::string &name) const {
+  PetscInt cStart, cEnd;
+  FSI_CALL(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  std::vector<PetscInt> cells;
+  if (name.empty()) {
+    for (PetscInt c = cStart; c < cEnd; ++c) cells.push_back(c);
+    return cells;
+  }
+  DMLabel l = label(name);
+  for (PetscInt c = cStart; c < cEnd; ++c) {
+    PetscInt v;
+    FSI_CALL(DMLabelGetValue(l, c, &v));
+    if (v >= 0) cells.push_back(c);
+  }
+  return cells;
+}
+
+// Mesh a .geo with the gmsh API (rank 0) into `out`, atomically.
+static void generate_with_gmsh(const std::string &geo, double h,
+                               const std::vector<std::string> &params, const std::string &out) {
+  std::vector<std::string> args = {"fsi_app", "-setnumber", "h", std::to_string(h)};
+  for (auto &p : params) {
+    auto eq = p.find('=');
+    if (eq == std::string::npos)
+      throw InputError("option -mesh_params expects NAME=VALUE items, got '" + p + "'");
+    args.insert(args.end(), {"-setnumber", p.substr(0, eq), p.substr(eq + 1)});
+  }
+  std::vector<char *> argv;
+  for (auto &a : args) argv.push_back(const_cast<char *>(a.c_str()));
+  gmsh::initialize((int)argv.size(), argv.data(), false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::option::setNumber("General.Verbosity", 1);
+  std::string tmp = out.substr(0, out.size() - 4) + ".tmp" + std::to_string(getpid()) + ".msh";
+  try {
+    gmsh::open(geo);
+    gmsh::model::mesh::generate(3);
+    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+    gmsh::option::setNumber("Mesh.Binary", 1);
+    gmsh::write(tmp);
+  } catch (...) {
+    gmsh::finalize();
+    throw InputError("gmsh failed to mesh " + geo + " at h = " + std::to_string(h) +
+                     ": check the .geo and the size");
+  }
+  gmsh::finalize();
+  if (std::rename(tmp.c_str(), out.c_str()) != 0)
+    throw InputError("cannot write mesh cache file " + out);
+}
+
+static std::string cached_mesh(MPI_Comm comm, const std::string &geo, double h,
+                               const std::vector<std::string> &params) {
+  std::ifstream in(geo);
+  std::stringstream content;
+  content << in.rdbuf();
+  std::string key = content.str() + "|h=" + std::to_string(h) + "|" + opt::join(params);
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016zx", std::hash<std::string>{}(key));
+  std::string dir = opt::string("mesh_cache_dir", "results/.mesh_cache");
+  std::string stem = geo.substr(geo.find_last_of('/') + 1);
+  stem = stem.substr(0, stem.find('.'));
+  std::string out = dir + "/" + stem + "_" + hash + ".msh";
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  int ok = 1;
+  std::string err;
+  if (rank == 0 && !file_exists(out)) {
+    std::string cmd = "mkdir -p '" + dir + "'";
+    if (std::system(cmd.c_str()) != 0) {
+      ok = 0;
+      err = "cannot create mesh cache directory " + dir + " (set -mesh_cache_dir)";
+    } else {
+      try {
+        generate_with_gmsh(geo, h, params, out);
+      } catch (InputError &e) {
+        ok = 0;
+        err = e.what();
+      }
+    }
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+  if (!ok) throw InputError(rank == 0 ? err : "mesh generation failed");
+  return out;
+}
+
+void load_mesh(MPI_Comm comm, Mesh &mesh) {
+  std::string file;
+  if (opt::has("mesh_file")) {
+    file = resolve_path(opt::required_string("mesh_file"));
+  } else if (opt::has("mesh_geo")) {
+    std::string geo = resolve_path(opt::required_string("mesh_geo"));
+    if (!file_exists(geo))
+      throw InputError("mesh source " + geo + " not found: check -mesh_geo");
+    double h = opt::positive("mesh_h", 0.1);
+    file = cached_mesh(comm, geo, h, opt::list("mesh_params"));
+  } else {
+    throw InputError("the scene names no mesh: give -mesh_file FILE.msh or -mesh_geo FILE.geo -mesh_h SIZE");
+  }
+  if (!file_exists(file))
+    throw InputError("mesh file " + file + " not found: check -mesh_file (or run scripts/setup)");
+  mesh.source = file;
+
+  // Physical names become labels; read errors become one line instead of a PETSc traceback.
+  FSI_CALL(PetscOptionsSetValue(nullptr, "-dm_plex_gmsh_use_regions", "1"));
+  DM dm;
+  FSI_CALL(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  PetscErrorCode ierr = DMPlexCreateFromFile(comm, file.c_str(), "fsi", PETSC_TRUE, &dm);
+  FSI_CALL(PetscPopErrorHandler());
+  if (ierr) throw InputError("mesh file " + file + " could not be read as a gmsh .msh mesh: regenerate it");
+  PetscInt dim;
+  FSI_CALL(DMGetDimension(dm, &dim));
+  if (dim != 3) throw InputError("mesh " + file + " is not 3D (dimension " + std::to_string(dim) + ")");
+  FSI_CALL(PetscObjectSetName((PetscObject)dm, "mesh"));
+
+  PetscPartitioner part;
+  FSI_CALL(DMPlexGetPartitioner(dm, &part));
+  FSI_CALL(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
+  FSI_CALL(PetscPartitionerSetFromOptions(part));
+  DM dist = nullptr;
+  FSI_CALL(DMPlexDistribute(dm, 0, nullptr, &dist));
+  if (dist) {
+    FSI_CALL(DMDestroy(&dm));
+    dm = dist;
+  }
+  mesh.dm = dm;
+
+  PetscInt cStart, cEnd, vStart, vEnd;
+  FSI_CALL(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  FSI_CALL(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  // Count owned points only (shared vertices belong to one rank through the point SF).
+  PetscSF sf;
+  FSI_CALL(DMGetPointSF(dm, &sf));
+  const PetscInt *leaves = nullptr;
+  PetscInt nleaves = 0;
+  FSI_CALL(PetscSFGetGraph(sf, nullptr, &nleaves, &leaves, nullptr));
+  PetscInt ghostV = 0;
+  for (PetscInt i = 0; i < (nleaves > 0 ? nleaves : 0); ++i) {
+    PetscInt p = leaves ? leaves[i] : i;
+    if (p >= vStart && p < vEnd) ++ghostV;
+  }
+  PetscInt loc[2] = {cEnd - cStart, vEnd - vStart - ghostV}, glob[2];
+  MPI_Allreduce(loc, glob, 2, MPIU_INT, MPI_SUM, comm);
+  mesh.cells_global = glob[0];
+  mesh.vertices_global = glob[1];
+}
+
+} // namespace fsi

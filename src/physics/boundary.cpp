@@ -1,0 +1,163 @@
+#include "fsi/boundary.hpp"
+#include "fsi/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu) {
+  space_ = &space;
+  exact_ = exact;
+  mu_ = mu;
+  face_rule_ = tri_rule(4);
+  mask_.assign(space.n_local, 0);
+  const auto names = opt::list("bc_names");
+  mesh.require_groups(names, "-bc_names");
+  bool level_fixed = false;
+  for (auto &n : names) {
+    BoundaryCondition bc;
+    bc.name = n;
+    const std::string pre = "bc_" + n + "_";
+    if (!opt::has(pre + "type"))
+      throw InputError("boundary '" + n + "' is listed in -bc_names but has no -" + pre +
+                       "type: give noslip|velocity|pressure|traction_exact");
+    const std::string type =
+        opt::choice(pre + "type", "", {"noslip", "velocity", "pressure", "traction_exact"});
+    if (type == "noslip") bc.type = BoundaryCondition::NoSlip;
+    if (type == "velocity") {
+      bc.type = BoundaryCondition::Velocity;
+      bc.profile = opt::choice(pre + "profile", "uniform", {"uniform", "parabolic", "exact"});
+      if (bc.profile == "exact" && !exact)
+        throw InputError("-" + pre + "profile exact needs -exact_solution");
+      if (bc.profile != "exact") {
+        bc.value = opt::real(pre + "value", 0);
+        auto d = opt::reals(pre + "direction");
+        if (d.size() != 3) throw InputError("option -" + pre + "direction needs 3 numbers x,y,z");
+        double nrm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (nrm == 0) throw InputError("option -" + pre + "direction must be non-zero");
+        for (int i = 0; i < 3; ++i) bc.dir[i] = d[i] / nrm;
+      }
+      if (bc.profile == "parabolic") {
+        auto c = opt::reals(pre + "center");
+        if (c.size() != 3) throw InputError("option -" + pre + "center needs 3 numbers x,y,z");
+        for (int i = 0; i < 3; ++i) bc.center[i] = c[i];
+        bc.radius = opt::required_positive(pre + "radius");
+      }
+      bc.wave = Waveform::from_options(pre);
+    }
+    if (type == "pressure") {
+      bc.type = BoundaryCondition::Pressure;
+      bc.value = opt::real(pre + "value", 0);
+      bc.wave = Waveform::from_options(pre);
+    }
+    if (type == "traction_exact") {
+      if (!exact) throw InputError("-" + pre + "type traction_exact needs -exact_solution");
+      bc.type = BoundaryCondition::TractionExact;
+    }
+    if (bc.type == BoundaryCondition::NoSlip || bc.type == BoundaryCondition::Velocity) {
+      bc.nodes = space.boundary_velocity_nodes(mesh, n);
+      for (auto &nd : bc.nodes)
+        for (int i = 0; i < 3; ++i) mask_[nd.dof + i] = 1;
+    } else {
+      bc.faces = space.boundary_faces(mesh, n);
+      level_fixed = true;
+    }
+    bcs_.push_back(bc);
+  }
+  // Without a traction boundary the pressure is defined up to a constant: pin one vertex.
+  if (!level_fixed) {
+    pinned_ = true;
+    pin_dof_ = space.pinned_pressure_dof(pin_vertex_);
+    if (pin_dof_ >= 0) mask_[pin_dof_] = 1;
+  }
+}
+
+void Boundaries::dirichlet_values(double t, const double *X,
+                                  std::vector<std::pair<PetscInt, double>> &out) const {
+  out.clear();
+  for (auto &bc : bcs_) {
+    if (bc.type != BoundaryCondition::NoSlip && bc.type != BoundaryCondition::Velocity) continue;
+    const double scale = bc.type == BoundaryCondition::Velocity ? bc.wave(t) : 0.0;
+    for (auto &nd : bc.nodes) {
+      double x[3], v[3] = {0, 0, 0};
+      for (int d = 0; d < 3; ++d)
+        x[d] = nd.vb < 0 ? X[3 * nd.va + d] : 0.5 * (X[3 * nd.va + d] + X[3 * nd.vb + d]);
+      if (bc.type == BoundaryCondition::Velocity) {
+        if (bc.profile == "exact") {
+          exact_->velocity(x, t, v);
+        } else {
+          double mag = bc.value * scale;
+          if (bc.profile == "parabolic") {
+            double r[3], along = 0, r2 = 0;
+            for (int d = 0; d < 3; ++d) r[d] = x[d] - bc.center[d], along += r[d] * bc.dir[d];
+            for (int d = 0; d < 3; ++d) r2 += std::pow(r[d] - along * bc.dir[d], 2);
+            mag *= std::max(0.0, 2.0 * (1.0 - r2 / (bc.radius * bc.radius)));
+          }
+          for (int d = 0; d < 3; ++d) v[d] = mag * bc.dir[d];
+        }
+      }
+      for (int d = 0; d < 3; ++d) out.emplace_back(nd.dof + d, v[d]);
+    }
+  }
+  if (pin_dof_ >= 0) {
+    double p = 0;
+    if (exact_) p = exact_->pressure(&X[3 * pin_vertex_], t);
+    out.emplace_back(pin_dof_, p);
+  }
+  // A node on two Dirichlet boundaries keeps the value of the one listed last.
+  std::vector<int> last(space_->n_local, -1);
+  for (size_t i = 0; i < out.size(); ++i) last[out[i].first] = (int)i;
+  size_t k = 0;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (last[out[i].first] == (int)i) out[k++] = out[i];
+  out.resize(k);
+}
+
+void Boundaries::add_traction_residual(const StepContext &ctx, PetscScalar *F) const {
+  for (auto &bc : bcs_) {
+    if (bc.type != BoundaryCondition::Pressure && bc.type != BoundaryCondition::TractionExact)
+      continue;
+    const double P = bc.type == BoundaryCondition::Pressure ? bc.value * bc.wave(ctx.t_af) : 0.0;
+    for (auto &f : bc.faces) {
+      double X[3][3], Xo[3];
+      for (int i = 0; i < 3; ++i)
+        for (int d = 0; d < 3; ++d) X[i][d] = ctx.X_af[3 * f.vertex[i] + d];
+      for (int d = 0; d < 3; ++d) Xo[d] = ctx.X_af[3 * f.opposite + d];
+      double e1[3], e2[3], nA[3];
+      for (int d = 0; d < 3; ++d) e1[d] = X[1][d] - X[0][d], e2[d] = X[2][d] - X[0][d];
+      nA[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      nA[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      nA[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      // Orient outward: away from the cell's opposite vertex.
+      double out = 0;
+      for (int d = 0; d < 3; ++d) out += nA[d] * (X[0][d] - Xo[d]);
+      if (out < 0)
+        for (double &c : nA) c = -c;
+      const double area2 = std::sqrt(nA[0] * nA[0] + nA[1] * nA[1] + nA[2] * nA[2]); // 2 * area
+      double n[3];
+      for (int d = 0; d < 3; ++d) n[d] = nA[d] / area2;
+      double Fe[6][3] = {};
+      for (size_t q = 0; q < face_rule_.weight.size(); ++q) {
+        const double *l = face_rule_.lambda[q].data();
+        double N[6], x[3] = {0, 0, 0}, tr[3];
+        p2_tri(l, N);
+        for (int i = 0; i < 3; ++i)
+          for (int d = 0; d < 3; ++d) x[d] += l[i] * X[i][d];
+        if (bc.type == BoundaryCondition::Pressure) {
+          for (int d = 0; d < 3; ++d) tr[d] = -P * n[d];
+        } else {
+          double s[3][3];
+          exact_->stress(x, ctx.t_af, mu_, s);
+          for (int i = 0; i < 3; ++i) tr[i] = s[i][0] * n[0] + s[i][1] * n[1] + s[i][2] * n[2];
+        }
+        const double w = face_rule_.weight[q] * area2; // reference triangle measure 1/2
+        for (int a = 0; a < 6; ++a)
+          for (int d = 0; d < 3; ++d) Fe[a][d] -= w * N[a] * tr[d];
+      }
+      for (int a = 0; a < 6; ++a)
+        for (int d = 0; d < 3; ++d) F[f.vdof[a] + d] += Fe[a][d];
+    }
+  }
+}
+
+} // namespace fsi

@@ -1,0 +1,181 @@
+#include "fsi/fluid.hpp"
+#include "fsi/options.hpp"
+
+#include <cstring>
+
+namespace fsi {
+
+FluidParams FluidParams::from_options() {
+  FluidParams p;
+  p.region = opt::string("fluid_region", "fluid");
+  p.rho = opt::positive("fluid_rho", p.rho);
+  p.mu = opt::positive("fluid_mu", p.mu);
+  p.stokes = opt::choice("fluid_model", "navier_stokes", {"navier_stokes", "stokes"}) == "stokes";
+  p.quad_degree = (int)opt::integer("fluid_quad_degree", 4);
+  if (p.quad_degree < 2 || p.quad_degree > 10)
+    throw InputError("option -fluid_quad_degree must be in [2, 10]");
+  return p;
+}
+
+struct FluidModule::Element {
+  TetGeometry geo;  // at t_{n+alpha_f}
+  TetGeometry geo1; // at t_{n+1}
+  double v[10][3];  // velocity at n+af
+  double a[10][3];  // acceleration at n+am
+  double u1[10][3]; // velocity at n+1 (continuity)
+  double p[4];      // pressure at n+1
+  double w[4][3];   // mesh velocity
+  PetscInt vdof[10], pdof[4];
+};
+
+FluidModule::FluidModule(const Space &space, const Mesh &mesh, const FluidParams &p)
+    : space_(space), p_(p) {
+  mesh.require_groups({p.region}, "the fluid (-fluid_region)");
+  cells_ = mesh.cells_in(p.region);
+  for (auto &c : cells_) c -= space.cStart;
+  rule_ = tet_rule(p.quad_degree);
+  for (auto &l : rule_.lambda) {
+    std::array<double, 10> n;
+    double gl[4][3] = {}, dn[10][3];
+    p2_tet(l.data(), gl, n.data(), dn);
+    N_.push_back(n);
+  }
+}
+
+void FluidModule::gather(const StepContext &ctx, PetscInt k, Element &e) const {
+  double X[4][3], X1[4][3];
+  for (int i = 0; i < 4; ++i) {
+    const int v = space_.cell_vertex[4 * k + i];
+    for (int d = 0; d < 3; ++d) {
+      X[i][d] = ctx.X_af[3 * v + d];
+      X1[i][d] = ctx.X_np1[3 * v + d];
+      e.w[i][d] = ctx.W ? ctx.W[3 * v + d] : 0.0;
+    }
+    e.pdof[i] = space_.cell_pdof[4 * k + i];
+    e.p[i] = PetscRealPart(ctx.U[e.pdof[i]]);
+  }
+  e.geo.set(X);
+  e.geo1.set(X1);
+  for (int a = 0; a < 10; ++a) {
+    const PetscInt o = space_.cell_vdof[10 * k + a];
+    e.vdof[a] = o;
+    for (int i = 0; i < 3; ++i) {
+      e.v[a][i] = ctx.v_af(o + i);
+      e.a[a][i] = ctx.a_am(o + i);
+      e.u1[a][i] = PetscRealPart(ctx.U[o + i]);
+    }
+  }
+}
+
+void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
+  const double rho = p_.rho, mu = p_.mu;
+  const bool conv = !p_.stokes;
+  Element e;
+  for (PetscInt k : cells_) {
+    gather(ctx, k, e);
+    double Fv[10][3] = {}, Fp[4] = {};
+    for (size_t q = 0; q < rule_.weight.size(); ++q) {
+      const double *l = rule_.lambda[q].data();
+      const double *N = N_[q].data();
+      double dN[10][3], dN1[10][3], Nd[10];
+      p2_tet(l, e.geo.grad_lambda, Nd, dN);
+      p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
+      const double s = rule_.weight[q] * e.geo.absdet, s1 = rule_.weight[q] * e.geo1.absdet;
+      double v[3] = {}, a[3] = {}, G[3][3] = {}, div1 = 0, p = 0, w[3] = {};
+      for (int b = 0; b < 10; ++b)
+        for (int i = 0; i < 3; ++i) {
+          v[i] += N[b] * e.v[b][i];
+          a[i] += N[b] * e.a[b][i];
+          for (int j = 0; j < 3; ++j) G[i][j] += e.v[b][i] * dN[b][j];
+          div1 += e.u1[b][i] * dN1[b][i];
+        }
+      for (int b = 0; b < 4; ++b) {
+        p += l[b] * e.p[b];
+        for (int i = 0; i < 3; ++i) w[i] += l[b] * e.w[b][i];
+      }
+      double f[3], tau[3][3];
+      for (int i = 0; i < 3; ++i) {
+        f[i] = rho * a[i];
+        if (conv)
+          for (int j = 0; j < 3; ++j) f[i] += rho * G[i][j] * (v[j] - w[j]);
+        for (int j = 0; j < 3; ++j) tau[i][j] = mu * (G[i][j] + G[j][i]);
+        tau[i][i] -= p;
+      }
+      for (int b = 0; b < 10; ++b)
+        for (int i = 0; i < 3; ++i)
+          Fv[b][i] += s * (N[b] * f[i] + tau[i][0] * dN[b][0] + tau[i][1] * dN[b][1] +
+                           tau[i][2] * dN[b][2]);
+      for (int b = 0; b < 4; ++b) Fp[b] -= s1 * l[b] * div1;
+    }
+    for (int b = 0; b < 10; ++b)
+      for (int i = 0; i < 3; ++i) F[e.vdof[b] + i] += Fv[b][i];
+    for (int b = 0; b < 4; ++b) F[e.pdof[b]] += Fp[b];
+  }
+}
+
+void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
+  const double rho = p_.rho, mu = p_.mu;
+  const bool conv = !p_.stokes;
+  const double cm = ctx.mass_shift(), cf = ctx.stiff_shift();
+  const std::vector<char> &bc = *ctx.is_dirichlet;
+  constexpr int n = 34; // 30 velocity + 4 pressure rows/columns
+  Element e;
+  PetscInt rows[n], cols[n];
+  double K[n][n];
+  for (PetscInt k : cells_) {
+    gather(ctx, k, e);
+    std::memset(K, 0, sizeof K);
+    for (size_t q = 0; q < rule_.weight.size(); ++q) {
+      const double *l = rule_.lambda[q].data();
+      const double *N = N_[q].data();
+      double dN[10][3], dN1[10][3], Nd[10];
+      p2_tet(l, e.geo.grad_lambda, Nd, dN);
+      p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
+      const double s = rule_.weight[q] * e.geo.absdet, s1 = rule_.weight[q] * e.geo1.absdet;
+      double c[3] = {}, G[3][3] = {};
+      if (conv) {
+        for (int b = 0; b < 10; ++b)
+          for (int i = 0; i < 3; ++i) {
+            c[i] += N[b] * e.v[b][i];
+            for (int j = 0; j < 3; ++j) G[i][j] += e.v[b][i] * dN[b][j];
+          }
+        for (int b = 0; b < 4; ++b)
+          for (int i = 0; i < 3; ++i) c[i] -= l[b] * e.w[b][i];
+      }
+      const double sm = s * rho * cm, sf = s * cf, smu = sf * mu, srho = sf * rho;
+      for (int a = 0; a < 10; ++a) {
+        for (int b = 0; b < 10; ++b) {
+          const double NN = N[a] * N[b];
+          double diag = sm * NN + smu * (dN[a][0] * dN[b][0] + dN[a][1] * dN[b][1] + dN[a][2] * dN[b][2]);
+          if (conv) diag += srho * N[a] * (c[0] * dN[b][0] + c[1] * dN[b][1] + c[2] * dN[b][2]);
+          for (int i = 0; i < 3; ++i) {
+            double *row = K[3 * a + i] + 3 * b;
+            row[i] += diag;
+            for (int j = 0; j < 3; ++j) {
+              row[j] += smu * dN[a][j] * dN[b][i];
+              if (conv) row[j] += srho * NN * G[i][j];
+            }
+          }
+        }
+        for (int b = 0; b < 4; ++b)
+          for (int i = 0; i < 3; ++i) {
+            K[3 * a + i][30 + b] -= s * l[b] * dN[a][i];
+            K[30 + b][3 * a + i] -= s1 * l[b] * dN1[a][i];
+          }
+      }
+    }
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i) {
+        const PetscInt d = e.vdof[a] + i;
+        cols[3 * a + i] = d;
+        rows[3 * a + i] = bc[d] ? -1 : d;
+      }
+    for (int b = 0; b < 4; ++b) {
+      cols[30 + b] = e.pdof[b];
+      rows[30 + b] = bc[e.pdof[b]] ? -1 : e.pdof[b];
+    }
+    FSI_CALL(MatSetValuesLocal(J, n, rows, n, cols, &K[0][0], ADD_VALUES));
+  }
+}
+
+} // namespace fsi

@@ -1,0 +1,244 @@
+#include "fsi/monitors.hpp"
+#include "fsi/options.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace fsi {
+
+void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
+                     const ExactFlow *exact) {
+  space_ = &space;
+  fluid_ = fluid;
+  exact_ = fluid ? exact : nullptr;
+  comm_ = PetscObjectComm((PetscObject)space.dm);
+  surf_names_ = opt::list("monitor_surfaces");
+  if (!surf_names_.empty() && !fluid)
+    throw InputError("-monitor_surfaces needs a fluid in the scene");
+  mesh.require_groups(surf_names_, "-monitor_surfaces");
+  for (auto &n : surf_names_) surf_faces_.push_back(space.boundary_faces(mesh, n));
+
+  std::string pts = opt::string("probe_points", "");
+  std::stringstream ss(pts);
+  std::string item;
+  int rank;
+  MPI_Comm_rank(comm_, &rank);
+  while (std::getline(ss, item, ';')) {
+    if (item.empty()) continue;
+    Probe p;
+    std::stringstream is(item);
+    std::string c;
+    int k = 0;
+    while (std::getline(is, c, ',') && k < 3) p.x[k++] = std::atof(c.c_str());
+    if (k != 3) throw InputError("-probe_points expects x,y,z;x,y,z;... got '" + item + "'");
+    double best = -1e300;
+    PetscInt best_cell = -1;
+    double bl[4] = {};
+    for (PetscInt cell : fluid ? fluid->cells() : std::vector<PetscInt>{}) {
+      double X[4][3];
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < 3; ++d) X[i][d] = space.X[3 * space.cell_vertex[4 * cell + i] + d];
+      TetGeometry g;
+      g.set(X);
+      double l[4], s = 0;
+      for (int i = 1; i < 4; ++i) {
+        l[i] = 0;
+        for (int d = 0; d < 3; ++d) l[i] += g.grad_lambda[i][d] * (p.x[d] - X[0][d]);
+        s += l[i];
+      }
+      l[0] = 1 - s;
+      double mn = std::min(std::min(l[0], l[1]), std::min(l[2], l[3]));
+      if (mn > best) {
+        best = mn;
+        best_cell = cell;
+        for (int i = 0; i < 4; ++i) bl[i] = l[i];
+      }
+    }
+    int mine = best > -1e-8 ? rank : 1 << 30, owner;
+    MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm_);
+    if (owner == 1 << 30) throw InputError("probe point " + item + " lies outside the fluid mesh");
+    p.owner = owner;
+    if (owner == rank) {
+      p.cell = best_cell;
+      for (int i = 0; i < 4; ++i) p.lambda[i] = bl[i];
+    }
+    probes_.push_back(p);
+  }
+}
+
+std::vector<std::string> Monitors::columns() const {
+  std::vector<std::string> c;
+  for (auto &n : surf_names_)
+    for (auto q : {"flux", "area", "fx", "fy", "fz", "p"}) c.push_back(n + "_" + q);
+  for (size_t k = 0; k < probes_.size(); ++k) {
+    const std::string p = "probe" + std::to_string(k) + "_";
+    for (auto q : {"vx", "vy", "vz", "p"}) c.push_back(p + q);
+    if (exact_)
+      for (auto q : {"vx_exact", "vy_exact", "vz_exact", "p_exact"}) c.push_back(p + q);
+  }
+  if (exact_)
+    for (auto q : {"err_v_l2", "err_p_l2", "err_v_rel", "err_p_rel"}) c.push_back(q);
+  return c;
+}
+
+ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
+                            const std::vector<double> &Xp, double tp) const {
+  static const QuadRule rule = tet_rule(6);
+  // sums: |ev|^2, |v|^2, ep^2, p^2, int ep, int p, volume
+  double acc[7] = {};
+  for (PetscInt k : fluid_->cells()) {
+    double X[4][3], XP[4][3];
+    for (int i = 0; i < 4; ++i)
+      for (int d = 0; d < 3; ++d) {
+        X[i][d] = Xv[3 * space_->cell_vertex[4 * k + i] + d];
+        XP[i][d] = Xp[3 * space_->cell_vertex[4 * k + i] + d];
+      }
+    TetGeometry g, gp;
+    g.set(X);
+    gp.set(XP);
+    for (size_t q = 0; q < rule.weight.size(); ++q) {
+      const double *l = rule.lambda[q].data();
+      double N[10], dN[10][3], x[3] = {0, 0, 0}, xp[3] = {0, 0, 0}, vh[3] = {0, 0, 0}, ph = 0, ve[3];
+      p2_tet(l, g.grad_lambda, N, dN);
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < 3; ++d) {
+          x[d] += l[i] * X[i][d];
+          xp[d] += l[i] * XP[i][d];
+        }
+      for (int a = 0; a < 10; ++a)
+        for (int d = 0; d < 3; ++d) vh[d] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + d]);
+      for (int i = 0; i < 4; ++i) ph += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
+      exact_->velocity(x, tv, ve);
+      const double pe = exact_->pressure(xp, tp);
+      const double w = rule.weight[q] * g.absdet, wp = rule.weight[q] * gp.absdet;
+      for (int d = 0; d < 3; ++d) {
+        acc[0] += w * (vh[d] - ve[d]) * (vh[d] - ve[d]);
+        acc[1] += w * ve[d] * ve[d];
+      }
+      acc[2] += wp * (ph - pe) * (ph - pe);
+      acc[3] += wp * pe * pe;
+      acc[4] += wp * (ph - pe);
+      acc[5] += wp * pe;
+      acc[6] += wp;
+    }
+  }
+  double glob[7];
+  MPI_Allreduce(acc, glob, 7, MPI_DOUBLE, MPI_SUM, comm_);
+  ErrorNorms e;
+  e.v_l2 = std::sqrt(glob[0]);
+  e.v_norm = std::sqrt(glob[1]);
+  double ep2 = glob[2], p2 = glob[3];
+  if (!exact_->pressure_level_defined()) { // compare up to a constant
+    ep2 -= glob[4] * glob[4] / glob[6];
+    p2 -= glob[5] * glob[5] / glob[6];
+  }
+  e.p_l2 = std::sqrt(std::max(ep2, 0.0));
+  e.p_norm = std::sqrt(std::max(p2, 0.0));
+  return e;
+}
+
+std::vector<double> Monitors::evaluate(const Problem &pb) {
+  std::vector<double> out;
+  if (!fluid_) return out;
+  Vec loc;
+  FSI_CALL(DMGetLocalVector(space_->dm, &loc));
+  pb.solution_local(loc);
+  const PetscScalar *u;
+  FSI_CALL(VecGetArrayRead(loc, &u));
+  const auto &Xc = pb.coordinates();
+  const double mu = fluid_->params().mu, t = pb.time();
+  static const QuadRule frule = tri_rule(4);
+
+  std::vector<double> surf;
+  for (auto &faces : surf_faces_) {
+    double s[6] = {}; // flux, area, fx, fy, fz, int p
+    for (auto &f : faces) {
+      const PetscInt k = f.cell;
+      double X[4][3];
+      int pos[3] = {-1, -1, -1};
+      for (int i = 0; i < 4; ++i) {
+        const int v = space_->cell_vertex[4 * k + i];
+        for (int d = 0; d < 3; ++d) X[i][d] = Xc[3 * v + d];
+        for (int j = 0; j < 3; ++j)
+          if (f.vertex[j] == v) pos[j] = i;
+      }
+      TetGeometry g;
+      g.set(X);
+      double e1[3], e2[3], nA[3], Xo[3];
+      for (int d = 0; d < 3; ++d) {
+        e1[d] = Xc[3 * f.vertex[1] + d] - Xc[3 * f.vertex[0] + d];
+        e2[d] = Xc[3 * f.vertex[2] + d] - Xc[3 * f.vertex[0] + d];
+        Xo[d] = Xc[3 * f.opposite + d];
+      }
+      nA[0] = e1[1] * e2[2] - e1[2] * e2[1];
+      nA[1] = e1[2] * e2[0] - e1[0] * e2[2];
+      nA[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      double o = 0;
+      for (int d = 0; d < 3; ++d) o += nA[d] * (Xc[3 * f.vertex[0] + d] - Xo[d]);
+      if (o < 0)
+        for (double &c : nA) c = -c;
+      const double J2 = std::sqrt(nA[0] * nA[0] + nA[1] * nA[1] + nA[2] * nA[2]);
+      double n[3] = {nA[0] / J2, nA[1] / J2, nA[2] / J2};
+      for (size_t q = 0; q < frule.weight.size(); ++q) {
+        double l[4] = {0, 0, 0, 0};
+        for (int j = 0; j < 3; ++j) l[pos[j]] = frule.lambda[q][j];
+        double N[10], dN[10][3], v[3] = {0, 0, 0}, G[3][3] = {}, p = 0;
+        p2_tet(l, g.grad_lambda, N, dN);
+        for (int a = 0; a < 10; ++a)
+          for (int i = 0; i < 3; ++i) {
+            const double ua = PetscRealPart(u[space_->cell_vdof[10 * k + a] + i]);
+            v[i] += N[a] * ua;
+            for (int j = 0; j < 3; ++j) G[i][j] += ua * dN[a][j];
+          }
+        for (int i = 0; i < 4; ++i) p += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
+        const double w = frule.weight[q] * J2;
+        s[0] += w * (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]);
+        s[1] += w;
+        for (int i = 0; i < 3; ++i) {
+          double sn = -p * n[i];
+          for (int j = 0; j < 3; ++j) sn += mu * (G[i][j] + G[j][i]) * n[j];
+          s[2 + i] -= w * sn;
+        }
+        s[5] += w * p;
+      }
+    }
+    double gs[6];
+    MPI_Allreduce(s, gs, 6, MPI_DOUBLE, MPI_SUM, comm_);
+    out.insert(out.end(), {gs[0], gs[1], gs[2], gs[3], gs[4], gs[1] > 0 ? gs[5] / gs[1] : 0.0});
+  }
+
+  int rank;
+  MPI_Comm_rank(comm_, &rank);
+  for (auto &p : probes_) {
+    double val[8] = {};
+    if (p.owner == rank) {
+      double N[10], dN[10][3], gl[4][3] = {};
+      p2_tet(p.lambda, gl, N, dN);
+      const PetscInt k = p.cell;
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i) val[i] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + i]);
+      double x[3] = {0, 0, 0};
+      for (int i = 0; i < 4; ++i) {
+        val[3] += p.lambda[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
+        for (int d = 0; d < 3; ++d) x[d] += p.lambda[i] * Xc[3 * space_->cell_vertex[4 * k + i] + d];
+      }
+      if (exact_) {
+        exact_->velocity(x, t, val + 4);
+        val[7] = exact_->pressure(x, t);
+      }
+    }
+    double g[8];
+    MPI_Allreduce(val, g, 8, MPI_DOUBLE, MPI_SUM, comm_);
+    out.insert(out.end(), g, g + (exact_ ? 8 : 4));
+  }
+  if (exact_) {
+    err_ = errors(u, Xc, t, pb.coordinates_af(), pb.time_af());
+    out.insert(out.end(), {err_.v_l2, err_.p_l2, err_.v_l2 / std::max(err_.v_norm, 1e-300),
+                           err_.p_l2 / std::max(err_.p_norm, 1e-300)});
+  }
+  FSI_CALL(VecRestoreArrayRead(loc, &u));
+  FSI_CALL(DMRestoreLocalVector(space_->dm, &loc));
+  return out;
+}
+
+} // namespace fsi

@@ -1,0 +1,124 @@
+#include "fsi/options.hpp"
+
+#include <cstdlib>
+#include <sstream>
+
+namespace fsi {
+
+void throw_petsc(PetscErrorCode ierr, const char *file, int line) {
+  throw PetscFailure("PETSc error " + std::to_string(ierr) + " at " + file + ":" +
+                     std::to_string(line));
+}
+
+namespace opt {
+
+static std::string key(const std::string &name) { return "-" + name; }
+
+bool has(const std::string &name) {
+  PetscBool set = PETSC_FALSE;
+  FSI_CALL(PetscOptionsHasName(nullptr, nullptr, key(name).c_str(), &set));
+  return set;
+}
+
+static bool raw(const std::string &name, std::string &value) {
+  char buf[4096];
+  PetscBool set = PETSC_FALSE;
+  FSI_CALL(PetscOptionsGetString(nullptr, nullptr, key(name).c_str(), buf, sizeof buf, &set));
+  if (set) value = buf;
+  return set;
+}
+
+static double parse_real(const std::string &name, const std::string &text) {
+  char *end = nullptr;
+  double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0')
+    throw InputError("option -" + name + " expects a number, got '" + text + "'");
+  return v;
+}
+
+double real(const std::string &name, double def) {
+  std::string s;
+  return raw(name, s) ? parse_real(name, s) : def;
+}
+
+double positive(const std::string &name, double def) {
+  double v = real(name, def);
+  if (!(v > 0))
+    throw InputError("option -" + name + " must be positive, got " + std::to_string(v) +
+                     ": give a value > 0");
+  return v;
+}
+
+double nonnegative(const std::string &name, double def) {
+  double v = real(name, def);
+  if (!(v >= 0))
+    throw InputError("option -" + name + " must be >= 0, got " + std::to_string(v));
+  return v;
+}
+
+double required_positive(const std::string &name) {
+  if (!has(name)) throw InputError("missing option -" + name + " (a positive number)");
+  return positive(name, 1.0);
+}
+
+long integer(const std::string &name, long def) {
+  std::string s;
+  if (!raw(name, s)) return def;
+  char *end = nullptr;
+  long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0')
+    throw InputError("option -" + name + " expects an integer, got '" + s + "'");
+  return v;
+}
+
+bool flag(const std::string &name, bool def) {
+  PetscBool v = def ? PETSC_TRUE : PETSC_FALSE, set = PETSC_FALSE;
+  FSI_CALL(PetscOptionsGetBool(nullptr, nullptr, key(name).c_str(), &v, &set));
+  return v;
+}
+
+std::string string(const std::string &name, const std::string &def) {
+  std::string s;
+  return raw(name, s) ? s : def;
+}
+
+std::string required_string(const std::string &name) {
+  std::string s;
+  if (!raw(name, s) || s.empty()) throw InputError("missing option -" + name);
+  return s;
+}
+
+std::string join(const std::vector<std::string> &v, const std::string &sep) {
+  std::string out;
+  for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  return out;
+}
+
+std::string choice(const std::string &name, const std::string &def,
+                   const std::vector<std::string> &choices) {
+  std::string s = string(name, def);
+  for (auto &c : choices)
+    if (c == s) return s;
+  throw InputError("option -" + name + " has unknown value '" + s + "'; use one of: " +
+                   join(choices));
+}
+
+std::vector<std::string> list(const std::string &name) {
+  std::vector<std::string> out;
+  std::string s;
+  if (!raw(name, s)) return out;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+std::vector<double> reals(const std::string &name) {
+  std::vector<double> out;
+  for (auto &s : list(name)) out.push_back(parse_real(name, s));
+  return out;
+}
+
+} // namespace opt
+} // namespace fsi

@@ -1,0 +1,322 @@
+#include "fsi/problem.hpp"
+#include "fsi/options.hpp"
+#include "fsi/stages.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+Stages &Stages::get() {
+  static Stages s;
+  static bool done = false;
+  if (!done) {
+    FSI_CALL(PetscLogStageRegister("FSI setup", &s.setup));
+    FSI_CALL(PetscLogStageRegister("FSI assembly", &s.assembly));
+    FSI_CALL(PetscLogStageRegister("FSI solve", &s.solve));
+    FSI_CALL(PetscLogStageRegister("FSI mesh motion", &s.mesh_motion));
+    FSI_CALL(PetscLogStageRegister("FSI output", &s.output));
+    done = true;
+  }
+  return s;
+}
+
+TimeParams TimeParams::from_options() {
+  TimeParams tp;
+  tp.steady = opt::choice("ts_scheme", "alpha", {"alpha", "steady"}) == "steady";
+  if (tp.steady) {
+    tp.max_steps = 1;
+    return tp;
+  }
+  tp.dt = opt::positive("ts_dt", 1e-3);
+  tp.rho_inf = opt::real("ts_alpha_radius", 0.5);
+  if (tp.rho_inf < 0 || tp.rho_inf > 1)
+    throw InputError("option -ts_alpha_radius (spectral radius rho_inf) must be in [0, 1]");
+  if (opt::has("ts_max_time")) {
+    tp.t_end = opt::positive("ts_max_time", 1.0);
+    tp.max_steps = std::lround(tp.t_end / tp.dt);
+    if (std::fabs(tp.max_steps * tp.dt - tp.t_end) > 1e-9 * tp.t_end)
+      throw InputError("-ts_max_time is not a whole number of steps -ts_dt: adjust one of them");
+  } else {
+    tp.max_steps = opt::integer("ts_max_steps", 10);
+    if (tp.max_steps < 1) throw InputError("option -ts_max_steps must be >= 1");
+    tp.t_end = tp.max_steps * tp.dt;
+  }
+  return tp;
+}
+
+static PetscErrorCode residual_cb(SNES, Vec U, Vec F, void *ctx) {
+  try {
+    static_cast<Problem *>(ctx)->residual(U, F);
+  } catch (std::exception &e) {
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
+  }
+  return 0;
+}
+
+static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
+  try {
+    static_cast<Problem *>(ctx)->jacobian(U, J);
+  } catch (std::exception &e) {
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
+  }
+  return 0;
+}
+
+Problem::Problem(const Mesh &mesh, const Space &space, const TimeParams &tp)
+    : mesh_(mesh), space_(space), tp_(tp) {
+  if (!tp.steady) {
+    const double r = tp.rho_inf;
+    alpha_m_ = (3 - r) / (2 * (1 + r));
+    alpha_f_ = 1 / (1 + r);
+    gamma_ = 0.5 + alpha_m_ - alpha_f_;
+  }
+  DM dm = space.dm;
+  FSI_CALL(DMCreateGlobalVector(dm, &U_));
+  FSI_CALL(PetscObjectSetName((PetscObject)U_, "solution"));
+  FSI_CALL(VecDuplicate(U_, &Vn_));
+  FSI_CALL(VecDuplicate(U_, &An_));
+  FSI_CALL(VecDuplicate(U_, &F_));
+  FSI_CALL(DMCreateLocalVector(dm, &Uloc_));
+  FSI_CALL(VecDuplicate(Uloc_, &Vloc_));
+  FSI_CALL(VecDuplicate(Uloc_, &Aloc_));
+  FSI_CALL(VecDuplicate(Uloc_, &Floc_));
+  FSI_CALL(DMSetMatType(dm, MATAIJ));
+  FSI_CALL(DMCreateMatrix(dm, &J_));
+  FSI_CALL(MatSetOption(J_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  Xn_ = space.X;
+}
+
+Problem::~Problem() {
+  Vec *vs[] = {&U_, &Vn_, &An_, &F_, &Uloc_, &Vloc_, &Aloc_, &Floc_};
+  for (auto v : vs)
+    if (*v) VecDestroy(v);
+  if (J_) MatDestroy(&J_);
+  if (snes_) SNESDestroy(&snes_);
+}
+
+void Problem::setup_solver() {
+  MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
+  FSI_CALL(SNESCreate(comm, &snes_));
+  FSI_CALL(SNESSetFunction(snes_, F_, residual_cb, this));
+  FSI_CALL(SNESSetJacobian(snes_, J_, J_, jacobian_cb, this));
+  FSI_CALL(SNESSetFromOptions(snes_));
+  KSP ksp;
+  PC pc;
+  FSI_CALL(SNESGetKSP(snes_, &ksp));
+  FSI_CALL(KSPGetPC(ksp, &pc));
+  PetscBool fs;
+  FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
+  if (fs) {
+    FSI_CALL(PCFieldSplitSetIS(pc, "velocity", space_.is_velocity));
+    FSI_CALL(PCFieldSplitSetIS(pc, "pressure", space_.is_pressure));
+  }
+}
+
+void Problem::mesh_at(double t, std::vector<double> &disp) const {
+  if (motion_) motion_->displacement(t, disp);
+  else disp.assign(3 * space_.n_vertices(), 0.0);
+}
+
+void Problem::solution_local(Vec &loc) const {
+  FSI_CALL(DMGlobalToLocalBegin(space_.dm, U_, INSERT_VALUES, loc));
+  FSI_CALL(DMGlobalToLocalEnd(space_.dm, U_, INSERT_VALUES, loc));
+}
+
+void Problem::initialize(const std::string &ic) {
+  t_ = 0;
+  n_ = 0;
+  mesh_at(0.0, dn_);
+  for (size_t i = 0; i < Xn_.size(); ++i) Xn_[i] = space_.X[i] + dn_[i];
+  FSI_CALL(VecZeroEntries(U_));
+  FSI_CALL(VecZeroEntries(Vn_));
+  FSI_CALL(VecZeroEntries(An_));
+  if (ic == "exact") {
+    if (!exact_) throw InputError("-ic exact needs -exact_solution");
+    // Values on every local node; the nodal time derivative follows the node along its mesh
+    // trajectory x(t) = X + d_m(t) (ALE), by a central difference of the exact flow.
+    PetscSection ls;
+    FSI_CALL(DMGetLocalSection(space_.dm, &ls));
+    std::vector<double> dm_m, dm_p;
+    const double eps = 1e-6 * (tp_.steady ? 1.0 : tp_.dt) + 1e-9;
+    mesh_at(-eps, dm_m);
+    mesh_at(eps, dm_p);
+    PetscScalar *u, *a;
+    FSI_CALL(VecZeroEntries(Uloc_));
+    FSI_CALL(VecZeroEntries(Aloc_));
+    FSI_CALL(VecGetArray(Uloc_, &u));
+    FSI_CALL(VecGetArray(Aloc_, &a));
+    auto pos = [&](const std::vector<double> &d, int va, int vb, double x[3]) {
+      for (int k = 0; k < 3; ++k) {
+        x[k] = space_.X[3 * va + k] + d[3 * va + k];
+        if (vb >= 0) x[k] = 0.5 * (x[k] + space_.X[3 * vb + k] + d[3 * vb + k]);
+      }
+    };
+    auto set_node = [&](PetscInt off, int va, int vb) {
+      double x0[3], xm[3], xp[3], v0[3], vm[3], vp[3];
+      pos(dn_, va, vb, x0);
+      pos(dm_m, va, vb, xm);
+      pos(dm_p, va, vb, xp);
+      exact_->velocity(x0, 0.0, v0);
+      exact_->velocity(xm, -eps, vm);
+      exact_->velocity(xp, eps, vp);
+      for (int k = 0; k < 3; ++k) {
+        u[off + k] = v0[k];
+        a[off + k] = (vp[k] - vm[k]) / (2 * eps);
+      }
+    };
+    for (PetscInt v = space_.vStart; v < space_.vEnd; ++v) {
+      PetscInt off;
+      const int iv = (int)(v - space_.vStart);
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v, 0, &off));
+      set_node(off, iv, -1);
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &off));
+      double x0[3] = {Xn_[3 * iv], Xn_[3 * iv + 1], Xn_[3 * iv + 2]};
+      u[off] = exact_->pressure(x0, 0.0);
+    }
+    for (PetscInt e = space_.eStart; e < space_.eEnd; ++e) {
+      PetscInt off;
+      const PetscInt *cone;
+      FSI_CALL(DMPlexGetCone(space_.dm, e, &cone));
+      FSI_CALL(PetscSectionGetFieldOffset(ls, e, 0, &off));
+      set_node(off, (int)(cone[0] - space_.vStart), (int)(cone[1] - space_.vStart));
+    }
+    FSI_CALL(VecRestoreArray(Uloc_, &u));
+    FSI_CALL(VecRestoreArray(Aloc_, &a));
+    FSI_CALL(DMLocalToGlobal(space_.dm, Uloc_, INSERT_VALUES, U_));
+    FSI_CALL(DMLocalToGlobal(space_.dm, Aloc_, INSERT_VALUES, An_));
+    FSI_CALL(VecCopy(U_, Vn_));
+  } else if (ic != "rest") {
+    throw InputError("option -ic has unknown value '" + ic + "'; use one of: rest, exact");
+  }
+}
+
+void Problem::set_context(double t_np1) {
+  ctx_.t_n = t_;
+  ctx_.dt = tp_.dt;
+  ctx_.t_np1 = t_np1;
+  ctx_.steady = tp_.steady;
+  ctx_.alpha_m = alpha_m_;
+  ctx_.alpha_f = alpha_f_;
+  ctx_.gamma = gamma_;
+  ctx_.t_af = tp_.steady ? t_np1 : t_ + alpha_f_ * tp_.dt;
+  ctx_.X_af = Xaf_.data();
+  ctx_.X_np1 = Xnp1_.data();
+  ctx_.W = motion_ && !tp_.steady ? W_.data() : nullptr;
+  ctx_.is_dirichlet = &bcs_->dirichlet_mask();
+}
+
+StepStats Problem::step() {
+  Stages &st = Stages::get();
+  const double t_np1 = tp_.steady ? 0.0 : t_ + tp_.dt;
+  // Mesh configuration: at n+1, at n+alpha_f, and the mesh velocity.
+  FSI_CALL(PetscLogStagePush(st.mesh_motion));
+  mesh_at(t_np1, dnp1_);
+  const size_t nd = dnp1_.size();
+  Xaf_.resize(nd);
+  W_.resize(nd);
+  Xnp1_.resize(nd);
+  const double af = tp_.steady ? 1.0 : alpha_f_;
+  for (size_t i = 0; i < nd; ++i) {
+    Xaf_[i] = space_.X[i] + dn_[i] + af * (dnp1_[i] - dn_[i]);
+    W_[i] = tp_.steady ? 0.0 : (dnp1_[i] - dn_[i]) / tp_.dt;
+    Xnp1_[i] = space_.X[i] + dnp1_[i];
+  }
+  FSI_CALL(PetscLogStagePop());
+  set_context(t_np1);
+
+  // History in local form, predictor U = V_n, then Dirichlet data at t_{n+1}.
+  FSI_CALL(DMGlobalToLocal(space_.dm, Vn_, INSERT_VALUES, Vloc_));
+  FSI_CALL(DMGlobalToLocal(space_.dm, An_, INSERT_VALUES, Aloc_));
+  FSI_CALL(VecCopy(Vn_, U_));
+  bcs_->dirichlet_values(t_np1, Xnp1_.data(), bc_values_);
+  PetscScalar *u;
+  FSI_CALL(VecGetArray(U_, &u));
+  for (auto &[dof, val] : bc_values_)
+    if (space_.owned(dof)) u[space_.local_to_global[dof] - space_.rstart] = val;
+  FSI_CALL(VecRestoreArray(U_, &u));
+
+  FSI_CALL(PetscLogStagePush(st.solve));
+  FSI_CALL(SNESSolve(snes_, nullptr, U_));
+  FSI_CALL(PetscLogStagePop());
+  StepStats s;
+  FSI_CALL(SNESGetIterationNumber(snes_, &s.newton));
+  FSI_CALL(SNESGetLinearSolveIterations(snes_, &s.krylov));
+  FSI_CALL(SNESGetConvergedReason(snes_, &s.reason));
+  if (s.reason < 0)
+    throw SolveError(std::string("Newton did not converge at step ") + std::to_string(n_ + 1) +
+                     " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[s.reason]);
+
+  if (!tp_.steady) {
+    // a_{n+1} = (v_{n+1} - v_n) / (gamma dt) - (1 - gamma) / gamma a_n
+    FSI_CALL(VecAXPBYPCZ(An_, 1.0 / (gamma_ * tp_.dt), -1.0 / (gamma_ * tp_.dt),
+                         -(1 - gamma_) / gamma_, U_, Vn_));
+  }
+  FSI_CALL(VecCopy(U_, Vn_));
+  dn_ = dnp1_;
+  Xn_ = Xnp1_;
+  t_ = t_np1;
+  ++n_;
+  return s;
+}
+
+void Problem::residual(Vec U, Vec F) {
+  Stages &st = Stages::get();
+  FSI_CALL(PetscLogStagePush(st.assembly));
+  const double t0 = MPI_Wtime();
+  FSI_CALL(DMGlobalToLocal(space_.dm, U, INSERT_VALUES, Uloc_));
+  FSI_CALL(VecZeroEntries(Floc_));
+  const PetscScalar *u, *v, *a;
+  PetscScalar *f;
+  FSI_CALL(VecGetArrayRead(Uloc_, &u));
+  FSI_CALL(VecGetArrayRead(Vloc_, &v));
+  FSI_CALL(VecGetArrayRead(Aloc_, &a));
+  FSI_CALL(VecGetArray(Floc_, &f));
+  ctx_.U = u;
+  ctx_.Vn = v;
+  ctx_.An = a;
+  for (auto &m : modules_) m->add_residual(ctx_, f);
+  bcs_->add_traction_residual(ctx_, f);
+  FSI_CALL(VecRestoreArray(Floc_, &f));
+  FSI_CALL(VecZeroEntries(F));
+  FSI_CALL(DMLocalToGlobal(space_.dm, Floc_, ADD_VALUES, F));
+  // Dirichlet rows: u - g.
+  PetscScalar *fg;
+  FSI_CALL(VecGetArray(F, &fg));
+  for (auto &[dof, val] : bc_values_)
+    if (space_.owned(dof)) fg[space_.local_to_global[dof] - space_.rstart] = u[dof] - val;
+  FSI_CALL(VecRestoreArray(F, &fg));
+  FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
+  FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
+  FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
+  cost_.residuals++;
+  cost_.residual_time += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+}
+
+void Problem::jacobian(Vec U, Mat J) {
+  Stages &st = Stages::get();
+  FSI_CALL(PetscLogStagePush(st.assembly));
+  const double t0 = MPI_Wtime();
+  FSI_CALL(DMGlobalToLocal(space_.dm, U, INSERT_VALUES, Uloc_));
+  FSI_CALL(MatZeroEntries(J));
+  const PetscScalar *u, *v, *a;
+  FSI_CALL(VecGetArrayRead(Uloc_, &u));
+  FSI_CALL(VecGetArrayRead(Vloc_, &v));
+  FSI_CALL(VecGetArrayRead(Aloc_, &a));
+  ctx_.U = u;
+  ctx_.Vn = v;
+  ctx_.An = a;
+  for (auto &m : modules_) m->add_jacobian(ctx_, J);
+  for (auto &[dof, val] : bc_values_)
+    if (space_.owned(dof)) FSI_CALL(MatSetValue(J, space_.local_to_global[dof], space_.local_to_global[dof], 1.0, ADD_VALUES));
+  FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
+  FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
+  FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
+  FSI_CALL(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  cost_.jacobians++;
+  cost_.jacobian_time += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+}
+
+} // namespace fsi
