@@ -69,6 +69,7 @@ public:
   void jacobian(Vec U, Mat J);
 
 private:
+  void create_matrix();
   void mesh_at(double t, std::vector<double> &disp) const;
   void set_context(double t_np1);
   const Mesh &mesh_;

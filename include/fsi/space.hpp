@@ -36,9 +36,17 @@ struct Space {
   std::vector<PetscInt> cell_pdof;      // 4 per cell
   std::vector<double> X;                // 3 per local vertex, reference coordinates
   std::vector<PetscInt> local_to_global; // per local dof, global index
+  ISLocalToGlobalMapping l2g = nullptr;  // the same, for MatSetValuesLocal
   IS is_velocity = nullptr, is_pressure = nullptr;
+  // Our own global <-> local scatter built from local_to_global (the DM's section SF is not used).
+  VecScatter g2l = nullptr;
+  Vec create_global() const;
+  Vec create_local() const;
+  void to_local(Vec g, Vec l) const;      // insert owned + ghost values
+  void add_to_global(Vec l, Vec g) const; // g += sum over ranks of l (g not zeroed here)
 
   void build(const Mesh &mesh);
+  void check_numbering() const;
   ~Space();
   PetscInt n_cells() const { return cEnd - cStart; }
   PetscInt n_vertices() const { return vEnd - vStart; }

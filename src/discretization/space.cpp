@@ -2,10 +2,75 @@
 #include "fsi/p2tet.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fsi {
 
+// Every local dof must map to the global dof of the same node: write each node's position into
+// its owned global entry, scatter back, compare.  Cheap, and it catches any numbering mistake.
+void Space::check_numbering() const {
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(dm, &ls));
+  std::vector<double> pos(n_local, 0.0);
+  for (PetscInt p = vStart; p < eEnd; ++p) {
+    if (p >= vEnd && p < eStart) continue;
+    double x[3];
+    if (p < vEnd) {
+      for (int d = 0; d < 3; ++d) x[d] = X[3 * (p - vStart) + d];
+    } else {
+      const PetscInt *cone;
+      FSI_CALL(DMPlexGetCone(dm, p, &cone));
+      for (int d = 0; d < 3; ++d)
+        x[d] = 0.5 * (X[3 * (cone[0] - vStart) + d] + X[3 * (cone[1] - vStart) + d]);
+    }
+    PetscInt dof, off;
+    FSI_CALL(PetscSectionGetDof(ls, p, &dof));
+    FSI_CALL(PetscSectionGetOffset(ls, p, &off));
+    for (PetscInt i = 0; i < dof; ++i) pos[off + i] = x[i % 3] + 10 * x[(i + 1) % 3] + 100 * x[(i + 2) % 3];
+  }
+  Vec g = create_global(), l = create_local();
+  PetscScalar *ga, *la;
+  FSI_CALL(VecGetArray(g, &ga));
+  for (PetscInt i = 0; i < n_local; ++i)
+    if (owned(i)) ga[local_to_global[i] - rstart] = pos[i];
+  FSI_CALL(VecRestoreArray(g, &ga));
+  to_local(g, l);
+  FSI_CALL(VecGetArray(l, &la));
+  int bad = 0, gbad;
+  for (PetscInt i = 0; i < n_local; ++i)
+    if (std::abs(PetscRealPart(la[i]) - pos[i]) > 1e-9 * (1 + std::abs(pos[i]))) ++bad;
+  FSI_CALL(VecRestoreArray(l, &la));
+  FSI_CALL(VecDestroy(&g));
+  FSI_CALL(VecDestroy(&l));
+  MPI_Allreduce(&bad, &gbad, 1, MPI_INT, MPI_SUM, PetscObjectComm((PetscObject)dm));
+  if (gbad) throw PetscFailure("internal: " + std::to_string(gbad) + " local dofs map to the wrong global dof");
+}
+
+Vec Space::create_global() const {
+  Vec v;
+  FSI_CALL(VecCreateMPI(PetscObjectComm((PetscObject)dm), n_owned, PETSC_DETERMINE, &v));
+  return v;
+}
+
+Vec Space::create_local() const {
+  Vec v;
+  FSI_CALL(VecCreateSeq(PETSC_COMM_SELF, n_local, &v));
+  return v;
+}
+
+void Space::to_local(Vec g, Vec l) const {
+  FSI_CALL(VecScatterBegin(g2l, g, l, INSERT_VALUES, SCATTER_FORWARD));
+  FSI_CALL(VecScatterEnd(g2l, g, l, INSERT_VALUES, SCATTER_FORWARD));
+}
+
+void Space::add_to_global(Vec l, Vec g) const {
+  FSI_CALL(VecScatterBegin(g2l, l, g, ADD_VALUES, SCATTER_REVERSE));
+  FSI_CALL(VecScatterEnd(g2l, l, g, ADD_VALUES, SCATTER_REVERSE));
+}
+
 Space::~Space() {
+  if (g2l) VecScatterDestroy(&g2l);
+  if (l2g) ISLocalToGlobalMappingDestroy(&l2g);
   if (is_velocity) ISDestroy(&is_velocity);
   if (is_pressure) ISDestroy(&is_pressure);
 }
@@ -40,39 +105,91 @@ void Space::build(const Mesh &mesh) {
   FSI_CALL(PetscSectionDestroy(&s));
   FSI_CALL(DMSetUp(dm));
 
-  PetscSection ls, gs;
+  // Global numbering, made here from the point SF: a point is owned unless it is a leaf of the
+  // point SF; owned points are numbered in chart order; ghosts get their owner's offsets through
+  // the SF.  (DMPlex's cached global section / local-to-global map from before our
+  // DMSetLocalSection gave an inconsistent numbering in 3.18 on 2 ranks.)
+  PetscSection ls;
+  PetscSF pointSF;
   FSI_CALL(DMGetLocalSection(dm, &ls));
-  FSI_CALL(DMGetGlobalSection(dm, &gs));
+  FSI_CALL(DMGetPointSF(dm, &pointSF));
   FSI_CALL(PetscSectionGetStorageSize(ls, &n_local));
-
-  // Local -> global dof map, from the global section (negative offsets encode ghosts).
-  Vec g;
-  FSI_CALL(DMGetGlobalVector(dm, &g));
-  FSI_CALL(VecGetOwnershipRange(g, &rstart, nullptr));
-  FSI_CALL(VecGetLocalSize(g, &n_owned));
-  FSI_CALL(DMRestoreGlobalVector(dm, &g));
-  ISLocalToGlobalMapping l2g;
-  FSI_CALL(DMGetLocalToGlobalMapping(dm, &l2g));
-  local_to_global.resize(n_local);
-  for (PetscInt i = 0; i < n_local; ++i) local_to_global[i] = i;
-  FSI_CALL(ISLocalToGlobalMappingApply(l2g, n_local, local_to_global.data(), local_to_global.data()));
+  MPI_Comm comm = PetscObjectComm((PetscObject)dm);
+  PetscInt sf_roots;
+  FSI_CALL(PetscSFGetGraph(pointSF, &sf_roots, nullptr, nullptr, nullptr));
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  const PetscInt npts = pEnd - pStart;
+  std::vector<char> ghost(npts, 0);
+  {
+    PetscInt nroots, nleaves;
+    const PetscInt *leaves;
+    const PetscSFNode *remote;
+    FSI_CALL(PetscSFGetGraph(pointSF, &nroots, &nleaves, &leaves, &remote));
+    for (PetscInt i = 0; i < (nleaves > 0 ? nleaves : 0); ++i) {
+      const PetscInt p = leaves ? leaves[i] : i;
+      if (remote[i].rank != rank) ghost[p - pStart] = 1;
+    }
+  }
+  n_owned = 0;
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt dof;
+    FSI_CALL(PetscSectionGetDof(ls, p, &dof));
+    if (!ghost[p - pStart]) n_owned += dof;
+  }
+  MPI_Scan(&n_owned, &rstart, 1, MPIU_INT, MPI_SUM, comm);
+  rstart -= n_owned;
+  std::vector<PetscInt> goff(npts, -1), gleaf(npts, -1);
+  {
+    PetscInt next = rstart;
+    for (PetscInt p = pStart; p < pEnd; ++p) {
+      PetscInt dof;
+      FSI_CALL(PetscSectionGetDof(ls, p, &dof));
+      if (!ghost[p - pStart]) goff[p - pStart] = next, next += dof;
+    }
+    gleaf = goff;
+    if (sf_roots >= 0) {
+      FSI_CALL(PetscSFBcastBegin(pointSF, MPIU_INT, goff.data(), gleaf.data(), MPI_REPLACE));
+      FSI_CALL(PetscSFBcastEnd(pointSF, MPIU_INT, goff.data(), gleaf.data(), MPI_REPLACE));
+    }
+  }
+  local_to_global.assign(n_local, -1);
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt dof, loff;
+    FSI_CALL(PetscSectionGetDof(ls, p, &dof));
+    if (dof <= 0) continue;
+    FSI_CALL(PetscSectionGetOffset(ls, p, &loff));
+    const PetscInt g0 = ghost[p - pStart] ? gleaf[p - pStart] : goff[p - pStart];
+    for (PetscInt i = 0; i < dof; ++i) local_to_global[loff + i] = g0 + i;
+  }
+  FSI_CALL(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 1, n_local, local_to_global.data(),
+                                        PETSC_COPY_VALUES, &l2g));
+  {
+    Vec gv = create_global(), lv = create_local();
+    IS from, to;
+    FSI_CALL(ISCreateGeneral(PETSC_COMM_SELF, n_local, local_to_global.data(), PETSC_COPY_VALUES, &from));
+    FSI_CALL(ISCreateStride(PETSC_COMM_SELF, n_local, 0, 1, &to));
+    FSI_CALL(VecScatterCreate(gv, from, lv, to, &g2l));
+    FSI_CALL(ISDestroy(&from));
+    FSI_CALL(ISDestroy(&to));
+    FSI_CALL(VecDestroy(&gv));
+    FSI_CALL(VecDestroy(&lv));
+  }
 
   // Field index sets over owned dofs.
   std::vector<PetscInt> iv, ip;
   for (PetscInt p = pStart; p < pEnd; ++p) {
-    PetscInt dof, off;
-    FSI_CALL(PetscSectionGetDof(gs, p, &dof));
-    FSI_CALL(PetscSectionGetOffset(gs, p, &off));
-    if (dof <= 0 || off < 0) continue; // not owned
+    PetscInt dof;
+    FSI_CALL(PetscSectionGetDof(ls, p, &dof));
+    if (dof <= 0 || ghost[p - pStart]) continue;
     PetscInt fo;
-    FSI_CALL(PetscSectionGetFieldOffset(gs, p, 0, &fo));
-    for (int c = 0; c < 3; ++c) iv.push_back(fo + c);
+    FSI_CALL(PetscSectionGetFieldOffset(ls, p, 0, &fo));
+    for (int c = 0; c < 3; ++c) iv.push_back(local_to_global[fo + c]);
     if (p >= vStart && p < vEnd) {
-      FSI_CALL(PetscSectionGetFieldOffset(gs, p, 1, &fo));
-      ip.push_back(fo);
+      FSI_CALL(PetscSectionGetFieldOffset(ls, p, 1, &fo));
+      ip.push_back(local_to_global[fo]);
     }
   }
-  MPI_Comm comm = PetscObjectComm((PetscObject)dm);
   FSI_CALL(ISCreateGeneral(comm, (PetscInt)iv.size(), iv.data(), PETSC_COPY_VALUES, &is_velocity));
   FSI_CALL(ISSetBlockSize(is_velocity, 3));
   FSI_CALL(ISCreateGeneral(comm, (PetscInt)ip.size(), ip.data(), PETSC_COPY_VALUES, &is_pressure));
@@ -93,6 +210,8 @@ void Space::build(const Mesh &mesh) {
     for (int d = 0; d < 3; ++d) X[3 * (v - vStart) + d] = PetscRealPart(ca[off + d]);
   }
   FSI_CALL(VecRestoreArrayRead(coords, &ca));
+
+  check_numbering();
 
   // Per-cell node tables in our node order.
   const PetscInt nc = n_cells();

@@ -140,8 +140,7 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
 std::vector<double> Monitors::evaluate(const Problem &pb) {
   std::vector<double> out;
   if (!fluid_) return out;
-  Vec loc;
-  FSI_CALL(DMGetLocalVector(space_->dm, &loc));
+  Vec loc = space_->create_local();
   pb.solution_local(loc);
   const PetscScalar *u;
   FSI_CALL(VecGetArrayRead(loc, &u));
@@ -237,7 +236,7 @@ std::vector<double> Monitors::evaluate(const Problem &pb) {
                            err_.p_l2 / std::max(err_.p_norm, 1e-300)});
   }
   FSI_CALL(VecRestoreArrayRead(loc, &u));
-  FSI_CALL(DMRestoreLocalVector(space_->dm, &loc));
+  FSI_CALL(VecDestroy(&loc));
   return out;
 }
 

@@ -71,19 +71,50 @@ Problem::Problem(const Mesh &mesh, const Space &space, const TimeParams &tp)
     gamma_ = 0.5 + alpha_m_ - alpha_f_;
   }
   DM dm = space.dm;
-  FSI_CALL(DMCreateGlobalVector(dm, &U_));
+  U_ = space.create_global();
   FSI_CALL(PetscObjectSetName((PetscObject)U_, "solution"));
   FSI_CALL(VecDuplicate(U_, &Vn_));
   FSI_CALL(VecDuplicate(U_, &An_));
   FSI_CALL(VecDuplicate(U_, &F_));
-  FSI_CALL(DMCreateLocalVector(dm, &Uloc_));
+  Uloc_ = space.create_local();
   FSI_CALL(VecDuplicate(Uloc_, &Vloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Aloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Floc_));
-  FSI_CALL(DMSetMatType(dm, MATAIJ));
-  FSI_CALL(DMCreateMatrix(dm, &J_));
-  FSI_CALL(MatSetOption(J_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  create_matrix();
   Xn_ = space.X;
+}
+
+// The Jacobian's nonzero pattern from our own cell tables (every dof of a cell couples with
+// every other), so it is exact for any set of modules and built once for the whole run.
+void Problem::create_matrix() {
+  MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
+  ISLocalToGlobalMapping l2g = space_.l2g;
+  Mat pre;
+  FSI_CALL(MatCreate(comm, &pre));
+  FSI_CALL(MatSetSizes(pre, space_.n_owned, space_.n_owned, PETSC_DETERMINE, PETSC_DETERMINE));
+  FSI_CALL(MatSetType(pre, MATPREALLOCATOR));
+  FSI_CALL(MatSetLocalToGlobalMapping(pre, l2g, l2g));
+  FSI_CALL(MatSetUp(pre));
+  PetscInt idx[34];
+  double zeros[34 * 34] = {};
+  for (PetscInt k = 0; k < space_.n_cells(); ++k) {
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i) idx[3 * a + i] = space_.cell_vdof[10 * k + a] + i;
+    for (int b = 0; b < 4; ++b) idx[30 + b] = space_.cell_pdof[4 * k + b];
+    FSI_CALL(MatSetValuesLocal(pre, 34, idx, 34, idx, zeros, INSERT_VALUES));
+  }
+  for (PetscInt r = space_.rstart; r < space_.rstart + space_.n_owned; ++r)
+    FSI_CALL(MatSetValue(pre, r, r, 0.0, INSERT_VALUES));
+  FSI_CALL(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatCreate(comm, &J_));
+  FSI_CALL(MatSetSizes(J_, space_.n_owned, space_.n_owned, PETSC_DETERMINE, PETSC_DETERMINE));
+  FSI_CALL(MatSetType(J_, MATAIJ));
+  FSI_CALL(MatSetOptionsPrefix(J_, "jac_"));
+  FSI_CALL(MatSetLocalToGlobalMapping(J_, l2g, l2g));
+  FSI_CALL(MatPreallocatorPreallocate(pre, PETSC_TRUE, J_));
+  FSI_CALL(MatDestroy(&pre));
+  FSI_CALL(MatSetOption(J_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
 }
 
 Problem::~Problem() {
@@ -118,8 +149,7 @@ void Problem::mesh_at(double t, std::vector<double> &disp) const {
 }
 
 void Problem::solution_local(Vec &loc) const {
-  FSI_CALL(DMGlobalToLocalBegin(space_.dm, U_, INSERT_VALUES, loc));
-  FSI_CALL(DMGlobalToLocalEnd(space_.dm, U_, INSERT_VALUES, loc));
+  space_.to_local(U_, loc);
 }
 
 void Problem::initialize(const std::string &ic) {
@@ -180,10 +210,19 @@ void Problem::initialize(const std::string &ic) {
       FSI_CALL(PetscSectionGetFieldOffset(ls, e, 0, &off));
       set_node(off, (int)(cone[0] - space_.vStart), (int)(cone[1] - space_.vStart));
     }
+    // Owned entries straight into the global vectors (every rank computed the same values).
+    PetscScalar *ug, *ag;
+    FSI_CALL(VecGetArray(U_, &ug));
+    FSI_CALL(VecGetArray(An_, &ag));
+    for (PetscInt i = 0; i < space_.n_local; ++i)
+      if (space_.owned(i)) {
+        ug[space_.local_to_global[i] - space_.rstart] = u[i];
+        ag[space_.local_to_global[i] - space_.rstart] = a[i];
+      }
+    FSI_CALL(VecRestoreArray(U_, &ug));
+    FSI_CALL(VecRestoreArray(An_, &ag));
     FSI_CALL(VecRestoreArray(Uloc_, &u));
     FSI_CALL(VecRestoreArray(Aloc_, &a));
-    FSI_CALL(DMLocalToGlobal(space_.dm, Uloc_, INSERT_VALUES, U_));
-    FSI_CALL(DMLocalToGlobal(space_.dm, Aloc_, INSERT_VALUES, An_));
     FSI_CALL(VecCopy(U_, Vn_));
   } else if (ic != "rest") {
     throw InputError("option -ic has unknown value '" + ic + "'; use one of: rest, exact");
@@ -225,8 +264,8 @@ StepStats Problem::step() {
   set_context(t_np1);
 
   // History in local form, predictor U = V_n, then Dirichlet data at t_{n+1}.
-  FSI_CALL(DMGlobalToLocal(space_.dm, Vn_, INSERT_VALUES, Vloc_));
-  FSI_CALL(DMGlobalToLocal(space_.dm, An_, INSERT_VALUES, Aloc_));
+  space_.to_local(Vn_, Vloc_);
+  space_.to_local(An_, Aloc_);
   FSI_CALL(VecCopy(Vn_, U_));
   bcs_->dirichlet_values(t_np1, Xnp1_.data(), bc_values_);
   PetscScalar *u;
@@ -263,7 +302,7 @@ void Problem::residual(Vec U, Vec F) {
   Stages &st = Stages::get();
   FSI_CALL(PetscLogStagePush(st.assembly));
   const double t0 = MPI_Wtime();
-  FSI_CALL(DMGlobalToLocal(space_.dm, U, INSERT_VALUES, Uloc_));
+  space_.to_local(U, Uloc_);
   FSI_CALL(VecZeroEntries(Floc_));
   const PetscScalar *u, *v, *a;
   PetscScalar *f;
@@ -278,7 +317,7 @@ void Problem::residual(Vec U, Vec F) {
   bcs_->add_traction_residual(ctx_, f);
   FSI_CALL(VecRestoreArray(Floc_, &f));
   FSI_CALL(VecZeroEntries(F));
-  FSI_CALL(DMLocalToGlobal(space_.dm, Floc_, ADD_VALUES, F));
+  space_.add_to_global(Floc_, F);
   // Dirichlet rows: u - g.
   PetscScalar *fg;
   FSI_CALL(VecGetArray(F, &fg));
@@ -297,7 +336,7 @@ void Problem::jacobian(Vec U, Mat J) {
   Stages &st = Stages::get();
   FSI_CALL(PetscLogStagePush(st.assembly));
   const double t0 = MPI_Wtime();
-  FSI_CALL(DMGlobalToLocal(space_.dm, U, INSERT_VALUES, Uloc_));
+  space_.to_local(U, Uloc_);
   FSI_CALL(MatZeroEntries(J));
   const PetscScalar *u, *v, *a;
   FSI_CALL(VecGetArrayRead(Uloc_, &u));
