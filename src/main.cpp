@@ -32,6 +32,21 @@ struct RunTotals {
   double wall = 0;
 };
 
+// Options nobody has read after the first step are typos in a scene (every module and solver
+// has read its options by then): an error before any result is written, unless allowed.
+void check_unused_options() {
+  if (opt::flag("allow_unused_options", false)) return;
+  PetscInt left = 0;
+  char **names, **values;
+  FSI_CALL(PetscOptionsLeftGet(nullptr, &left, &names, &values));
+  std::string list;
+  for (PetscInt i = 0; i < left; ++i) list += std::string(i ? ", -" : "-") + names[i];
+  const PetscInt n_left = left; // LeftRestore resets the count
+  FSI_CALL(PetscOptionsLeftRestore(nullptr, &left, &names, &values));
+  if (n_left > 0)
+    throw InputError("option(s) nobody reads: " + list + " (a typo? see -help; or pass -allow_unused_options)");
+}
+
 double peak_memory_mb() {
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);
@@ -116,6 +131,7 @@ int run(MPI_Comm comm) {
       const double t0 = MPI_Wtime();
       StepStats s = pb.step();
       const double step_s = MPI_Wtime() - t0;
+      if (pb.step_index() == 1) check_unused_options();
       tot.steps++;
       tot.newton += s.newton;
       tot.krylov += s.krylov;
@@ -206,21 +222,6 @@ int main(int argc, char **argv) {
   } catch (std::exception &e) {
     PetscPrintf(comm, "fsi_app: failure: %s\n", e.what());
     code = 4;
-  }
-  // Options nobody read are typos in scenes: an error, unless the user lets them pass.
-  PetscInt left = 0;
-  PetscOptionsLeftGet(nullptr, &left, nullptr, nullptr);
-  PetscBool allow = PETSC_FALSE;
-  PetscOptionsGetBool(nullptr, nullptr, "-allow_unused_options", &allow, nullptr);
-  if (code == 0 && left > 0 && !allow) {
-    char **names;
-    char **values;
-    PetscOptionsLeftGet(nullptr, &left, &names, &values);
-    std::string list;
-    for (PetscInt i = 0; i < left; ++i) list += std::string(i ? ", -" : "-") + names[i];
-    PetscOptionsLeftRestore(nullptr, &left, &names, &values);
-    PetscPrintf(comm, "fsi_app: error: option(s) nobody reads: %s (typo? or pass -allow_unused_options)\n", list.c_str());
-    code = 2;
   }
   PetscFinalize();
   return code;

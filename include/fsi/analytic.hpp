@@ -23,10 +23,12 @@ struct ExactFlow {
 // rho, mu: the fluid's.  Returns nullptr for none.
 std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu);
 
-// Scalar time functions for boundary data: -<prefix>waveform constant|step|cosine|ramp.
+// Scalar time functions for boundary data: -<prefix>waveform constant|step|cosine|sine, with
+// -<prefix>t_off (step), -<prefix>period and -<prefix>offset (cosine/sine: offset + cos(2 pi t/T)),
+// and an optional smooth start -<prefix>ramp [s].
 struct Waveform {
   std::string kind = "constant";
-  double t_off = 0, period = 1, ramp_time = 0;
+  double t_off = 0, period = 1, ramp_time = 0, offset = 0;
   double operator()(double t) const;
   static Waveform from_options(const std::string &prefix);
 };

@@ -138,8 +138,8 @@ std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu) {
 double Waveform::operator()(double t) const {
   double ramp = (ramp_time > 0 && t < ramp_time) ? 0.5 * (1 - std::cos(M_PI * t / ramp_time)) : 1.0;
   if (kind == "step") return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
-  if (kind == "cosine") return ramp * std::cos(2 * M_PI * t / period);
-  if (kind == "sine") return ramp * std::sin(2 * M_PI * t / period);
+  if (kind == "cosine") return ramp * (offset + std::cos(2 * M_PI * t / period));
+  if (kind == "sine") return ramp * (offset + std::sin(2 * M_PI * t / period));
   return ramp;
 }
 
@@ -147,7 +147,10 @@ Waveform Waveform::from_options(const std::string &prefix) {
   Waveform w;
   w.kind = opt::choice(prefix + "waveform", "constant", {"constant", "step", "cosine", "sine"});
   if (w.kind == "step") w.t_off = opt::required_positive(prefix + "t_off");
-  if (w.kind == "cosine" || w.kind == "sine") w.period = opt::required_positive(prefix + "period");
+  if (w.kind == "cosine" || w.kind == "sine") {
+    w.period = opt::required_positive(prefix + "period");
+    w.offset = opt::real(prefix + "offset", 0.0);
+  }
   w.ramp_time = opt::nonnegative(prefix + "ramp", 0);
   return w;
 }

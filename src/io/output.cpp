@@ -131,7 +131,7 @@ void Output::open_monitor(const std::vector<std::string> &columns) {
 
 void Output::monitor_row(const std::vector<double> &v) {
   if (!monitor_) return;
-  for (size_t i = 0; i < v.size(); ++i) std::fprintf(monitor_, i ? ",%.12g" : "%.12g", v[i]);
+  for (size_t i = 0; i < v.size(); ++i) std::fprintf(monitor_, i ? ",%.15g" : "%.15g", v[i]);
   std::fprintf(monitor_, "\n");
   std::fflush(monitor_);
 }

@@ -1,0 +1,71 @@
+"""Helpers for fsi_app tests: run the app under mpirun, read its outputs, assert with messages."""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+APP = os.environ.get("FSI_APP", "")
+SRC = os.environ.get("FSI_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1", OPENBLAS_NUM_THREADS="1")
+FAILURES = []
+
+
+def scene(name):
+    return os.path.join(SRC, "tests", "scenes", name + ".opts")
+
+
+def preset(name):
+    return os.path.join(SRC, "petsc_options", name + ".opts")
+
+
+class Run:
+    def __init__(self, code, out, outdir):
+        self.code, self.out, self.dir = code, out, outdir
+
+    @property
+    def summary(self):
+        with open(os.path.join(self.dir, "summary.json")) as f:
+            return json.load(f)
+
+    @property
+    def monitor(self):
+        with open(os.path.join(self.dir, "monitor.csv")) as f:
+            return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def run(opts, np=1, extra=(), presets=("direct",), timeout=900):
+    """Run fsi_app with scene file(s) `opts` on `np` ranks; returns Run."""
+    outdir = tempfile.mkdtemp(prefix="fsi_test_")
+    cmd = ["mpirun", "-n", str(np), APP]
+    for o in ([opts] if isinstance(opts, str) else opts):
+        cmd += ["-options_file", o]
+    for p in presets:
+        cmd += ["-options_file", preset(p)]
+    cmd += ["-out_dir", outdir, "-mesh_cache_dir", os.path.join(SRC, "build", "mesh_cache")]
+    cmd += list(extra)
+    p = subprocess.run(cmd, cwd=SRC, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                       text=True, timeout=timeout)
+    print("$", " ".join(cmd))
+    tail = "\n".join(p.stdout.strip().splitlines()[-3:])
+    print(tail)
+    return Run(p.returncode, p.stdout, outdir)
+
+
+def check(cond, msg):
+    print(("PASS: " if cond else "FAIL: ") + msg)
+    if not cond:
+        FAILURES.append(msg)
+
+
+def order(e_coarse, e_fine, h_coarse, h_fine):
+    return math.log(e_coarse / e_fine) / math.log(h_coarse / h_fine)
+
+
+def finish():
+    n = len(FAILURES)
+    print(f"{'all checks passed' if n == 0 else str(n) + ' check(s) failed'}")
+    sys.exit(1 if n else 0)

@@ -1,0 +1,32 @@
+"""Bad input: one clear line naming the problem, a non-zero exit, no PETSc traceback and no
+summary.json that could pass for a finished result."""
+import os
+import tempfile
+from fsitest import check, finish, run, scene
+
+garbage = os.path.join(tempfile.mkdtemp(), "corrupt.msh")
+with open(garbage, "w") as f:
+    f.write("$MeshFormat\nthis is not a mesh\n")
+cases = [
+    ("missing mesh file", ["-mesh_file", "/nonexistent/pipe.msh"], "not found"),
+    ("corrupt mesh file", ["-mesh_file", garbage], "could not be read"),
+    ("unknown boundary name", ["-bc_names", "inlet,outlet,wal", "-bc_wal_type", "noslip"], "wal"),
+    ("boundary without type", ["-bc_names", "inlet,outlet,wall,inlet2"], "inlet2"),
+    ("negative viscosity", ["-fluid_mu", "-0.004"], "fluid_mu"),
+    ("zero density", ["-fluid_rho", "0"], "fluid_rho"),
+    ("unknown option value", ["-fluid_model", "eulerian"], "eulerian"),
+    ("unknown physics", ["-physics", "fluid,magnetism"], "magnetism"),
+    ("option nobody reads", ["-fluid_viscosity", "0.004"], "fluid_viscosity"),
+    ("output directory not writable", ["-out_dir", "/proc/fsi_results"], "output directory"),
+]
+for name, extra, needle in cases:
+    r = run(scene("poiseuille"), extra=extra)
+    lines = [l for l in r.out.splitlines() if "fsi_app: error:" in l]
+    check(r.code != 0, f"{name}: non-zero exit ({r.code})")
+    check(len(lines) == 1 and needle in lines[0], f"{name}: one error line naming '{needle}'")
+    check("PETSC ERROR" not in r.out, f"{name}: no PETSc traceback")
+    outdir = r.dir if "-out_dir" not in extra else extra[extra.index("-out_dir") + 1]
+    check(not os.path.exists(os.path.join(outdir, "summary.json")), f"{name}: no summary.json")
+    if lines:
+        print("   message:", lines[0])
+finish()
