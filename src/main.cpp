@@ -4,6 +4,7 @@
 // The program reads as the algorithm: scene -> mesh -> space -> physics -> time loop -> outputs.
 #include "fsi/analytic.hpp"
 #include "fsi/boundary.hpp"
+#include "fsi/field_writer.hpp"
 #include "fsi/fluid.hpp"
 #include "fsi/mesh.hpp"
 #include "fsi/monitors.hpp"
@@ -116,7 +117,8 @@ int run(MPI_Comm comm) {
     PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(), (int)m->n_cells());
   out.write_options();
   out.open_monitor(mon.columns());
-  if (fields_every > 0) out.open_fields(space.dm);
+  std::unique_ptr<FieldWriter> fields;
+  if (fields_every > 0) fields = std::make_unique<FieldWriter>(space, out.dir());
   FSI_CALL(PetscLogStagePop());
   const double setup_time = MPI_Wtime() - t_start;
 
@@ -143,8 +145,12 @@ int run(MPI_Comm comm) {
       auto m = mon.evaluate(pb);
       row.insert(row.end(), m.begin(), m.end());
       out.monitor_row(row);
-      if (fields_every > 0 && pb.step_index() % fields_every == 0)
-        out.write_fields(space.dm, pb.solution(), pb.step_index(), pb.time());
+      if (fields && pb.step_index() % fields_every == 0) {
+        Vec loc = space.create_local();
+        pb.solution_local(loc);
+        fields->write(pb.step_index(), pb.time(), loc, pb.coordinates());
+        FSI_CALL(VecDestroy(&loc));
+      }
       FSI_CALL(PetscLogStagePop());
       output_time += MPI_Wtime() - o0;
       progress(comm, pb, s, step_s, MPI_Wtime() - loop_start);
@@ -155,7 +161,7 @@ int run(MPI_Comm comm) {
     PetscPrintf(comm, "fsi_app: %s\n", e.what());
   }
   out.close_monitor();
-  out.close_fields();
+  if (fields) fields->close();
   tot.wall = MPI_Wtime() - t_start;
 
   // Summary: what ran, its size, its cost, and the accuracy indicators the scene defines.

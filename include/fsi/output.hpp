@@ -1,8 +1,8 @@
 // The output contract (shared/design.md): in -out_dir DIR (default results/<scene>):
 //   options.txt   every option in effect
 //   monitor.csv   step,time,newton,krylov,step_seconds, then the scene's monitors
-//   fields.h5 + fields.xdmf   P2 velocity (vertex values) and pressure, every -out_fields_every
-//                             steps (0 = never, the default)
+//   fields.h5 + fields.xdmf   vertex fields every -out_fields_every steps (0 = never, the
+//                             default), see field_writer.hpp
 //   summary.json  written last: physics, ranks, sizes, iterations, times, converged, reason
 // Files are written under temporary names and renamed when complete; a stale summary.json from an
 // earlier run is removed at start, so a run that dies leaves no summary claiming success.
@@ -41,9 +41,6 @@ public:
   void open_monitor(const std::vector<std::string> &columns);
   void monitor_row(const std::vector<double> &values);
   void close_monitor();
-  void open_fields(DM dm);
-  void write_fields(DM dm, Vec U, long step, double t);
-  void close_fields();
   void write_summary(const Json &j) const;
 
 private:
@@ -52,7 +49,6 @@ private:
   int rank_ = 0;
   std::string dir_;
   FILE *monitor_ = nullptr;
-  PetscViewer fields_ = nullptr;
 };
 
 } // namespace fsi

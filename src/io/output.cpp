@@ -1,7 +1,6 @@
 #include "fsi/output.hpp"
 
 #include <cmath>
-#include <petscviewerhdf5.h>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
@@ -84,7 +83,6 @@ Output::Output(MPI_Comm comm, const std::string &dir) : comm_(comm), dir_(dir) {
 
 Output::~Output() {
   if (monitor_) std::fclose(monitor_);
-  if (fields_) PetscViewerDestroy(&fields_);
 }
 
 void Output::write_atomic(const std::string &name, const std::string &content) const {
@@ -141,29 +139,6 @@ void Output::close_monitor() {
   std::fclose(monitor_);
   monitor_ = nullptr;
   std::rename((dir_ + "/monitor.csv.partial").c_str(), (dir_ + "/monitor.csv").c_str());
-}
-
-void Output::open_fields(DM dm) {
-  const std::string path = dir_ + "/fields.h5";
-  FSI_CALL(PetscViewerHDF5Open(comm_, path.c_str(), FILE_MODE_WRITE, &fields_));
-  FSI_CALL(DMView(dm, fields_));
-}
-
-void Output::write_fields(DM dm, Vec U, long step, double t) {
-  if (!fields_) return;
-  FSI_CALL(DMSetOutputSequenceNumber(dm, (PetscInt)step, t));
-  FSI_CALL(VecView(U, fields_));
-}
-
-void Output::close_fields() {
-  if (!fields_) return;
-  FSI_CALL(PetscViewerDestroy(&fields_));
-  if (rank_ == 0) {
-    // PETSc's own XDMF generator (ships with petsc-dev); it writes fields.xmf beside the .h5.
-    std::string cmd = "cd '" + dir_ + "' && /usr/bin/python3 /usr/lib/petsc/lib/petsc/bin/petsc_gen_xdmf.py fields.h5 >/dev/null 2>&1 && mv fields.xmf fields.xdmf";
-    if (std::system(cmd.c_str()) != 0)
-      std::fprintf(stderr, "fsi_app: warning: could not write %s/fields.xdmf\n", dir_.c_str());
-  }
 }
 
 void Output::write_summary(const Json &j) const { write_atomic("summary.json", j.str() + "\n"); }

@@ -1,0 +1,149 @@
+#include "fsi/field_writer.hpp"
+
+#include <fstream>
+#include <petscviewerhdf5.h>
+
+namespace fsi {
+
+FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(space), dir_(dir) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(space.dm, &ls));
+  // A vertex is owned where its pressure dof is; global vertex ids follow rank order.
+  std::vector<PetscInt> pdof(space.n_vertices());
+  for (PetscInt v = space.vStart; v < space.vEnd; ++v)
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &pdof[v - space.vStart]));
+  for (PetscInt v = 0; v < space.n_vertices(); ++v)
+    if (space.owned(pdof[v])) owned_vertices_.push_back(v);
+  nv_owned_ = (PetscInt)owned_vertices_.size();
+  PetscInt vstart = 0;
+  MPI_Scan(&nv_owned_, &vstart, 1, MPIU_INT, MPI_SUM, comm);
+  vstart -= nv_owned_;
+  MPI_Allreduce(&nv_owned_, &nv_global_, 1, MPIU_INT, MPI_SUM, comm);
+  PetscInt nc = space.n_cells();
+  MPI_Allreduce(&nc, &ncells_global_, 1, MPIU_INT, MPI_SUM, comm);
+  // Global id of every local vertex (ghosts from their owner) through a dof-sized vector.
+  Vec g = space.create_global(), l = space.create_local();
+  PetscScalar *ga;
+  FSI_CALL(VecGetArray(g, &ga));
+  for (PetscInt i = 0; i < nv_owned_; ++i)
+    ga[space.local_to_global[pdof[owned_vertices_[i]]] - space.rstart] = vstart + i;
+  FSI_CALL(VecRestoreArray(g, &ga));
+  space.to_local(g, l);
+  const PetscScalar *la;
+  FSI_CALL(VecGetArrayRead(l, &la));
+  std::vector<PetscInt> vid(space.n_vertices());
+  for (PetscInt v = 0; v < space.n_vertices(); ++v) vid[v] = (PetscInt)PetscRealPart(la[pdof[v]]);
+  FSI_CALL(VecRestoreArrayRead(l, &la));
+  FSI_CALL(VecDestroy(&g));
+  FSI_CALL(VecDestroy(&l));
+
+  FSI_CALL(PetscViewerHDF5Open(comm, (dir + "/fields.h5").c_str(), FILE_MODE_WRITE, &h5_));
+  Vec cells;
+  FSI_CALL(VecCreateMPI(comm, 4 * nc, PETSC_DETERMINE, &cells));
+  FSI_CALL(VecSetBlockSize(cells, 4));
+  PetscScalar *ca;
+  FSI_CALL(VecGetArray(cells, &ca));
+  for (PetscInt k = 0; k < nc; ++k)
+    for (int i = 0; i < 4; ++i) ca[4 * k + i] = vid[space.cell_vertex[4 * k + i]];
+  FSI_CALL(VecRestoreArray(cells, &ca));
+  FSI_CALL(PetscObjectSetName((PetscObject)cells, "cells"));
+  FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/topology"));
+  FSI_CALL(VecView(cells, h5_));
+  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
+  FSI_CALL(VecDestroy(&cells));
+  Vec xv = vertex_vec(3);
+  PetscScalar *xa;
+  FSI_CALL(VecGetArray(xv, &xa));
+  for (PetscInt i = 0; i < nv_owned_; ++i)
+    for (int d = 0; d < 3; ++d) xa[3 * i + d] = space.X[3 * owned_vertices_[i] + d];
+  FSI_CALL(VecRestoreArray(xv, &xa));
+  FSI_CALL(PetscObjectSetName((PetscObject)xv, "vertices"));
+  FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/geometry"));
+  FSI_CALL(VecView(xv, h5_));
+  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
+  FSI_CALL(VecDestroy(&xv));
+}
+
+FieldWriter::~FieldWriter() {
+  if (h5_) PetscViewerDestroy(&h5_);
+}
+
+Vec FieldWriter::vertex_vec(int bs) const {
+  Vec v;
+  FSI_CALL(VecCreateMPI(PetscObjectComm((PetscObject)space_.dm), bs * nv_owned_, PETSC_DETERMINE, &v));
+  FSI_CALL(VecSetBlockSize(v, bs));
+  return v;
+}
+
+void FieldWriter::write(long step, double t, Vec U_local, const std::vector<double> &X) {
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(space_.dm, &ls));
+  const PetscScalar *u;
+  FSI_CALL(VecGetArrayRead(U_local, &u));
+  Vec vel = vertex_vec(3), p = vertex_vec(1), disp = vertex_vec(3);
+  PetscScalar *va, *pa, *da;
+  FSI_CALL(VecGetArray(vel, &va));
+  FSI_CALL(VecGetArray(p, &pa));
+  FSI_CALL(VecGetArray(disp, &da));
+  for (PetscInt i = 0; i < nv_owned_; ++i) {
+    const PetscInt v = owned_vertices_[i];
+    PetscInt o0, o1;
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v + space_.vStart, 0, &o0));
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v + space_.vStart, 1, &o1));
+    for (int d = 0; d < 3; ++d) {
+      va[3 * i + d] = u[o0 + d];
+      da[3 * i + d] = X[3 * v + d] - space_.X[3 * v + d];
+    }
+    pa[i] = u[o1];
+  }
+  FSI_CALL(VecRestoreArray(vel, &va));
+  FSI_CALL(VecRestoreArray(p, &pa));
+  FSI_CALL(VecRestoreArray(disp, &da));
+  FSI_CALL(VecRestoreArrayRead(U_local, &u));
+  char tag[32];
+  std::snprintf(tag, sizeof tag, "_%06ld", step);
+  FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/fields"));
+  for (auto [vec, name] : {std::pair<Vec, const char *>{vel, "velocity"}, {p, "pressure"}, {disp, "mesh_displacement"}}) {
+    FSI_CALL(PetscObjectSetName((PetscObject)vec, (std::string(name) + tag).c_str()));
+    FSI_CALL(VecView(vec, h5_));
+    FSI_CALL(VecDestroy(&vec));
+  }
+  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
+  steps_.emplace_back(step, t);
+}
+
+void FieldWriter::close() {
+  if (!h5_) return;
+  FSI_CALL(PetscViewerDestroy(&h5_));
+  int rank;
+  MPI_Comm_rank(PetscObjectComm((PetscObject)space_.dm), &rank);
+  if (rank != 0) return;
+  const std::string path = dir_ + "/fields.xdmf", tmp = path + ".tmp";
+  std::ofstream f(tmp);
+  const auto nv = std::to_string(nv_global_), nc = std::to_string(ncells_global_);
+  f << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (auto &[step, t] : steps_) {
+    char tag[32];
+    std::snprintf(tag, sizeof tag, "_%06ld", step);
+    f << "   <Grid Name=\"step" << tag << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << t << "\"/>\n"
+      << "    <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << nc << "\">\n"
+      << "     <DataItem Dimensions=\"" << nc << " 4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/topology/cells</DataItem>\n"
+      << "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n"
+      << "     <DataItem Dimensions=\"" << nv << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
+      << "    </Geometry>\n";
+    for (auto [name, nc_] : {std::pair<const char *, int>{"velocity", 3}, {"pressure", 1}, {"mesh_displacement", 3}})
+      f << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << (nc_ == 3 ? "Vector" : "Scalar")
+        << "\" Center=\"Node\">\n     <DataItem Dimensions=\"" << nv << (nc_ == 3 ? " 3" : "")
+        << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/" << name << tag
+        << "</DataItem>\n    </Attribute>\n";
+    f << "   </Grid>\n";
+  }
+  f << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  f.close();
+  std::rename(tmp.c_str(), path.c_str());
+}
+
+} // namespace fsi
