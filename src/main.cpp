@@ -171,6 +171,9 @@ int run(MPI_Comm comm) {
   double jt = c.jacobian_time, jt_max, rt = c.residual_time, rt_max;
   MPI_Allreduce(&jt, &jt_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   MPI_Allreduce(&rt, &rt_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+  // Linear solver time (factorisation / preconditioner setup and Krylov) = Newton time less assembly.
+  double ls = c.nonlinear_solve_time - c.jacobian_time - c.residual_time, ls_max;
+  MPI_Allreduce(&ls, &ls_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   PetscInt fc = fluid ? fluid->n_cells() : 0, fc_g;
   MPI_Allreduce(&fc, &fc_g, 1, MPIU_INT, MPI_SUM, comm);
 
@@ -181,12 +184,13 @@ int run(MPI_Comm comm) {
   dofs.set("velocity", (long)space.n_velocity).set("pressure", (long)space.n_pressure)
       .set("total", (long)(space.n_velocity + space.n_pressure));
   times.set("total", tot.wall).set("setup", setup_time).set("jacobian_assembly", jt_max)
-      .set("residual_assembly", rt_max).set("output", output_time)
+      .set("residual_assembly", rt_max).set("linear_solver", ls_max).set("output", output_time)
       .set("per_step", tot.steps ? (tot.wall - setup_time) / tot.steps : 0.0);
   iters.set("newton_total", tot.newton).set("newton_max_per_step", tot.newton_max)
       .set("krylov_total", tot.krylov).set("krylov_max_per_step", tot.krylov_max)
       .set("newton_mean_per_step", tot.steps ? double(tot.newton) / tot.steps : 0.0);
   cost.set("jacobians", c.jacobians).set("residuals", c.residuals)
+      .set("linear_solver_seconds_per_newton", tot.newton ? ls_max / tot.newton : 0.0)
       .set("jacobian_tets_per_second_per_rank",
            jt_max > 0 ? double(fc_g) / size * c.jacobians / jt_max : 0.0)
       .set("residual_tets_per_second_per_rank",

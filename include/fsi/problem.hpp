@@ -31,7 +31,7 @@ struct StepStats {
 
 struct CostCounters {
   long residuals = 0, jacobians = 0;
-  double residual_time = 0, jacobian_time = 0;
+  double residual_time = 0, jacobian_time = 0, nonlinear_solve_time = 0;
 };
 
 class Problem {

@@ -275,7 +275,9 @@ StepStats Problem::step() {
   FSI_CALL(VecRestoreArray(U_, &u));
 
   FSI_CALL(PetscLogStagePush(st.solve));
+  const double ts0 = MPI_Wtime();
   FSI_CALL(SNESSolve(snes_, nullptr, U_));
+  cost_.nonlinear_solve_time += MPI_Wtime() - ts0;
   FSI_CALL(PetscLogStagePop());
   StepStats s;
   FSI_CALL(SNESGetIterationNumber(snes_, &s.newton));
