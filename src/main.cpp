@@ -1,5 +1,6 @@
 // fsi_app: blood flow and deformable tissue, monolithic ALE finite elements on DMPlex.
-//   mpirun -n 2 fsi_app -options_file examples/<scene>/<scene>.opts [-options_file petsc_options/X.opts]
+//   mpirun -n 2 fsi_app -options_file examples/<scene>/<scene>.opts [-options_file
+//   petsc_options/X.opts]
 // The scene (a PETSc options file) switches physics on; what it does not ask for is not built.
 // The program reads as the algorithm: scene -> mesh -> space -> physics -> time loop -> outputs.
 #include "fsi/analytic.hpp"
@@ -20,11 +21,14 @@
 
 using namespace fsi;
 
-static const char help[] =
-    "fsi_app: monolithic ALE fluid-structure interaction (P2P1 Navier-Stokes, hyperelastic solid).\n"
-    "Scene options: -scene_name, -physics fluid, -mesh_geo/-mesh_h or -mesh_file, -fluid_*, -bc_*,\n"
-    "-ts_scheme alpha|steady, -ts_dt, -ts_max_steps|-ts_max_time, -ts_alpha_radius, -ic rest|exact,\n"
-    "-exact_solution, -ale_motion, -monitor_surfaces, -probe_points, -out_dir, -out_fields_every.\n";
+static const char help[] = "fsi_app: monolithic ALE fluid-structure interaction (P2P1 "
+                           "Navier-Stokes, hyperelastic solid).\n"
+                           "Scene options: -scene_name, -physics fluid, -mesh_geo/-mesh_h or "
+                           "-mesh_file, -fluid_*, -bc_*,\n"
+                           "-ts_scheme alpha|steady, -ts_dt, -ts_max_steps|-ts_max_time, "
+                           "-ts_alpha_radius, -ic rest|exact,\n"
+                           "-exact_solution, -ale_motion, -monitor_surfaces, -probe_points, "
+                           "-out_dir, -out_fields_every.\n";
 
 namespace {
 
@@ -41,11 +45,13 @@ void check_unused_options() {
   char **names, **values;
   FSI_CALL(PetscOptionsLeftGet(nullptr, &left, &names, &values));
   std::string list;
-  for (PetscInt i = 0; i < left; ++i) list += std::string(i ? ", -" : "-") + names[i];
+  for (PetscInt i = 0; i < left; ++i)
+    list += std::string(i ? ", -" : "-") + names[i];
   const PetscInt n_left = left; // LeftRestore resets the count
   FSI_CALL(PetscOptionsLeftRestore(nullptr, &left, &names, &values));
   if (n_left > 0)
-    throw InputError("option(s) nobody reads: " + list + " (a typo? see -help; or pass -allow_unused_options)");
+    throw InputError("option(s) nobody reads: " + list +
+                     " (a typo? see -help; or pass -allow_unused_options)");
 }
 
 double peak_memory_mb() {
@@ -57,7 +63,9 @@ double peak_memory_mb() {
 void progress(MPI_Comm comm, const Problem &pb, const StepStats &s, double step_s, double elapsed) {
   const long n = pb.step_index(), N = pb.time_params().max_steps;
   const double eta = elapsed / n * (N - n);
-  PetscPrintf(comm, "step %5ld/%ld  t = %.4e s  newton %2d  krylov %4d  %.2f s/step  elapsed %.1f s  eta %.1f s\n",
+  PetscPrintf(comm,
+              "step %5ld/%ld  t = %.4e s  newton %2d  krylov %4d  %.2f s/step  elapsed %.1f s  eta "
+              "%.1f s\n",
               n, N, pb.time(), (int)s.newton, (int)s.krylov, step_s, elapsed, eta);
 }
 
@@ -72,10 +80,12 @@ int run(MPI_Comm comm) {
   if (physics.empty()) throw InputError("the scene switches no physics on: give -physics fluid");
   bool want_fluid = false;
   for (auto &p : physics) {
-    if (p == "fluid") want_fluid = true;
+    if (p == "fluid")
+      want_fluid = true;
     else if (p == "solid" || p == "ale")
       throw InputError("-physics " + p + " is not available yet in this build: use -physics fluid");
-    else throw InputError("-physics has unknown value '" + p + "'; use: fluid");
+    else
+      throw InputError("-physics has unknown value '" + p + "'; use: fluid");
   }
   Output out(comm, opt::string("out_dir", "results/" + scene));
   const long fields_every = opt::integer("out_fields_every", 0);
@@ -100,7 +110,8 @@ int run(MPI_Comm comm) {
   pb.set_exact(exact.get());
   pb.set_mesh_motion(make_mesh_motion(space));
   Boundaries bcs;
-  bcs.setup(mesh, space, exact.get(), fluid ? fluid->params().mu : 0.0);
+  bcs.setup(mesh, space, exact.get(), fluid ? fluid->params().mu : 0.0,
+            fluid ? fluid->params().rho : 0.0);
   pb.set_boundaries(&bcs);
   pb.setup_solver();
   Monitors mon;
@@ -110,11 +121,14 @@ int run(MPI_Comm comm) {
 
   int size;
   MPI_Comm_size(comm, &size);
-  PetscPrintf(comm, "fsi_app: scene '%s', %d rank(s), mesh %s: %d cells, %d vertices; dofs velocity %d, pressure %d\n",
-              scene.c_str(), size, mesh.source.c_str(), (int)mesh.cells_global, (int)mesh.vertices_global,
-              (int)space.n_velocity, (int)space.n_pressure);
+  PetscPrintf(comm,
+              "fsi_app: scene '%s', %d rank(s), mesh %s: %d cells, %d vertices; dofs velocity %d, "
+              "pressure %d\n",
+              scene.c_str(), size, mesh.source.c_str(), (int)mesh.cells_global,
+              (int)mesh.vertices_global, (int)space.n_velocity, (int)space.n_pressure);
   for (auto &m : pb.modules())
-    PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(), (int)m->n_cells());
+    PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(),
+                (int)m->n_cells());
   out.write_options();
   out.open_monitor(mon.columns());
   std::unique_ptr<FieldWriter> fields;
@@ -141,7 +155,8 @@ int run(MPI_Comm comm) {
       tot.krylov_max = std::max<long>(tot.krylov_max, s.krylov);
       const double o0 = MPI_Wtime();
       FSI_CALL(PetscLogStagePush(st.output));
-      std::vector<double> row = {(double)pb.step_index(), pb.time(), (double)s.newton, (double)s.krylov, step_s};
+      std::vector<double> row = {(double)pb.step_index(), pb.time(), (double)s.newton,
+                                 (double)s.krylov, step_s};
       auto m = mon.evaluate(pb);
       row.insert(row.end(), m.begin(), m.end());
       out.monitor_row(row);
@@ -171,50 +186,75 @@ int run(MPI_Comm comm) {
   double jt = c.jacobian_time, jt_max, rt = c.residual_time, rt_max;
   MPI_Allreduce(&jt, &jt_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   MPI_Allreduce(&rt, &rt_max, 1, MPI_DOUBLE, MPI_MAX, comm);
-  // Linear solver time (factorisation / preconditioner setup and Krylov) = Newton time less assembly.
+  // Linear solver time (factorisation / preconditioner setup and Krylov) = Newton time less
+  // assembly.
   double ls = c.nonlinear_solve_time - c.jacobian_time - c.residual_time, ls_max;
   MPI_Allreduce(&ls, &ls_max, 1, MPI_DOUBLE, MPI_MAX, comm);
   PetscInt fc = fluid ? fluid->n_cells() : 0, fc_g;
   MPI_Allreduce(&fc, &fc_g, 1, MPIU_INT, MPI_SUM, comm);
 
   std::vector<std::string> active;
-  for (auto &m : pb.modules()) active.push_back(m->name());
+  for (auto &m : pb.modules())
+    active.push_back(m->name());
   if (pb.mesh_motion()) active.push_back("mesh motion: " + pb.mesh_motion()->name());
   Json dofs, times, iters, cost, j;
-  dofs.set("velocity", (long)space.n_velocity).set("pressure", (long)space.n_pressure)
+  dofs.set("velocity", (long)space.n_velocity)
+      .set("pressure", (long)space.n_pressure)
       .set("total", (long)(space.n_velocity + space.n_pressure));
-  times.set("total", tot.wall).set("setup", setup_time).set("jacobian_assembly", jt_max)
-      .set("residual_assembly", rt_max).set("linear_solver", ls_max).set("output", output_time)
+  times.set("total", tot.wall)
+      .set("setup", setup_time)
+      .set("jacobian_assembly", jt_max)
+      .set("residual_assembly", rt_max)
+      .set("linear_solver", ls_max)
+      .set("output", output_time)
       .set("per_step", tot.steps ? (tot.wall - setup_time) / tot.steps : 0.0);
-  iters.set("newton_total", tot.newton).set("newton_max_per_step", tot.newton_max)
-      .set("krylov_total", tot.krylov).set("krylov_max_per_step", tot.krylov_max)
+  iters.set("newton_total", tot.newton)
+      .set("newton_max_per_step", tot.newton_max)
+      .set("krylov_total", tot.krylov)
+      .set("krylov_max_per_step", tot.krylov_max)
       .set("newton_mean_per_step", tot.steps ? double(tot.newton) / tot.steps : 0.0);
-  cost.set("jacobians", c.jacobians).set("residuals", c.residuals)
+  cost.set("jacobians", c.jacobians)
+      .set("residuals", c.residuals)
       .set("linear_solver_seconds_per_newton", tot.newton ? ls_max / tot.newton : 0.0)
       .set("jacobian_tets_per_second_per_rank",
            jt_max > 0 ? double(fc_g) / size * c.jacobians / jt_max : 0.0)
       .set("residual_tets_per_second_per_rank",
            rt_max > 0 ? double(fc_g) / size * c.residuals / rt_max : 0.0)
       .set("peak_memory_mb_per_rank_max", mem_max);
-  j.set("scene", scene).set("physics", active).set("ranks", size).set("mesh", mesh.source)
-      .set("cells", (long)mesh.cells_global).set("fluid_cells", (long)fc_g)
-      .set("vertices", (long)mesh.vertices_global).set("dofs", dofs)
+  j.set("scene", scene)
+      .set("physics", active)
+      .set("ranks", size)
+      .set("mesh", mesh.source)
+      .set("cells", (long)mesh.cells_global)
+      .set("fluid_cells", (long)fc_g)
+      .set("vertices", (long)mesh.vertices_global)
+      .set("dofs", dofs)
       .set("time_scheme", tp.steady ? "steady" : "generalized-alpha")
-      .set("dt", tp.dt).set("rho_inf", tp.rho_inf).set("steps", tot.steps).set("final_time", pb.time())
-      .set("iterations", iters).set("wall_time", times).set("cost", cost)
-      .set("converged", converged).set("reason", reason);
+      .set("dt", tp.dt)
+      .set("rho_inf", tp.rho_inf)
+      .set("steps", tot.steps)
+      .set("final_time", pb.time())
+      .set("iterations", iters)
+      .set("wall_time", times)
+      .set("cost", cost)
+      .set("converged", converged)
+      .set("reason", reason);
   if (mon.has_exact() && tot.steps > 0) {
     const ErrorNorms &e = mon.last_errors();
     Json err;
-    err.set("velocity_l2", e.v_l2).set("pressure_l2", e.p_l2)
-        .set("velocity_l2_relative", e.v_l2 / e.v_norm).set("pressure_l2_relative", e.p_l2 / e.p_norm);
+    err.set("velocity_l2", e.v_l2)
+        .set("pressure_l2", e.p_l2)
+        .set("velocity_l2_relative", e.v_l2 / e.v_norm)
+        .set("pressure_l2_relative", e.p_l2 / e.p_norm);
     j.set("error_final", err);
   }
   out.write_summary(j);
-  PetscPrintf(comm, "fsi_app: %s: %ld steps, %ld Newton, %ld Krylov iterations, wall %.2f s "
-              "(setup %.2f, Jacobian %.2f, residual %.2f), peak memory %.0f MB/rank; results in %s\n",
-              converged ? "done" : "FAILED", tot.steps, tot.newton, tot.krylov, tot.wall, setup_time,
-              jt_max, rt_max, mem_max, out.dir().c_str());
+  PetscPrintf(
+      comm,
+      "fsi_app: %s: %ld steps, %ld Newton, %ld Krylov iterations, wall %.2f s "
+      "(setup %.2f, Jacobian %.2f, residual %.2f), peak memory %.0f MB/rank; results in %s\n",
+      converged ? "done" : "FAILED", tot.steps, tot.newton, tot.krylov, tot.wall, setup_time,
+      jt_max, rt_max, mem_max, out.dir().c_str());
   return converged ? 0 : 3;
 }
 

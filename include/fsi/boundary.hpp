@@ -4,7 +4,10 @@
 //   velocity                     v = profile(x) * waveform(t); -bc_<name>_profile
 //                                uniform|parabolic|exact, -bc_<name>_value [m/s] (mean speed),
 //                                -bc_<name>_direction x,y,z, parabolic: -bc_<name>_center, _radius
-//   pressure                     traction -P(t) n, P = -bc_<name>_value [Pa] * waveform(t)
+//   pressure                     traction -P(t) n, P = -bc_<name>_value [Pa] * waveform(t), plus
+//                                backflow stabilisation -beta rho/2 min(v.n, 0) v
+//                                (-bc_<name>_backflow_beta, default 0.2; 0 turns it off): keeps
+//                                the energy bounded when flow re-enters through the boundary
 //   traction_exact               traction sigma_exact n from -exact_solution (verification)
 // Waveforms: -bc_<name>_waveform constant|step|cosine|sine (+ _t_off, _period, _ramp).
 // Boundaries not listed are traction-free.  Dirichlet data are imposed at t_{n+1} on the nodes'
@@ -22,20 +25,22 @@ namespace fsi {
 struct BoundaryCondition {
   enum Type { NoSlip, Velocity, Pressure, TractionExact } type = NoSlip;
   std::string name, profile = "uniform";
-  double value = 0, dir[3] = {0, 0, 1}, center[3] = {0, 0, 0}, radius = 1;
+  double value = 0, dir[3] = {0, 0, 1}, center[3] = {0, 0, 0}, radius = 1, beta = 0;
   Waveform wave;
-  std::vector<DofNode> nodes;       // Dirichlet types
-  std::vector<BoundaryFace> faces;  // traction types
+  std::vector<DofNode> nodes;      // Dirichlet types
+  std::vector<BoundaryFace> faces; // traction types
 };
 
 class Boundaries {
 public:
-  void setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu);
+  void setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu, double rho);
   // Local dof mask of all Dirichlet dofs (velocity nodes and the pinned pressure, if any).
   const std::vector<char> &dirichlet_mask() const { return mask_; }
   // (local dof, value) for every Dirichlet dof at time t, node positions X (3 per vertex).
-  void dirichlet_values(double t, const double *X, std::vector<std::pair<PetscInt, double>> &out) const;
+  void dirichlet_values(double t, const double *X,
+                        std::vector<std::pair<PetscInt, double>> &out) const;
   void add_traction_residual(const StepContext &ctx, PetscScalar *F) const;
+  void add_traction_jacobian(const StepContext &ctx, Mat J) const; // backflow term only
   bool pressure_pinned() const { return pin_dof_ >= 0 || pinned_; }
   const std::vector<BoundaryCondition> &list() const { return bcs_; }
 
@@ -44,7 +49,7 @@ private:
   std::vector<char> mask_;
   const ExactFlow *exact_ = nullptr;
   const Space *space_ = nullptr;
-  double mu_ = 0;
+  double mu_ = 0, rho_ = 0;
   PetscInt pin_dof_ = -1;
   int pin_vertex_ = -1;
   bool pinned_ = false;

@@ -3,7 +3,8 @@
 //   sigma = -p I + mu (grad v + grad v^T),
 // P2 velocity / P1 pressure, generalized-alpha in time (velocity at n+af, acceleration at n+am,
 // pressure at n+1; continuity div v_{n+1} = 0 on the mesh of t_{n+1}, so that each step's
-// velocity is divergence-free on its own configuration), exact Newton Jacobian.  Options (prefix -fluid_):
+// velocity is divergence-free on its own configuration), exact Newton Jacobian.  Options (prefix
+// -fluid_):
 //   region NAME (physical volume, default "fluid"), rho [kg/m^3], mu [Pa s],
 //   model navier_stokes|stokes (stokes skips convection), quad_degree (default 4).
 #pragma once
@@ -25,7 +26,9 @@ struct FluidParams {
 class FluidModule : public PhysicsModule {
 public:
   FluidModule(const Space &space, const Mesh &mesh, const FluidParams &p);
-  std::string name() const override { return p_.stokes ? "fluid (Stokes)" : "fluid (Navier-Stokes, ALE)"; }
+  std::string name() const override {
+    return p_.stokes ? "fluid (Stokes)" : "fluid (Navier-Stokes, ALE)";
+  }
   void add_residual(const StepContext &ctx, PetscScalar *F) override;
   void add_jacobian(const StepContext &ctx, Mat J) override;
   PetscInt n_cells() const override { return (PetscInt)cells_.size(); }

@@ -10,8 +10,8 @@
 namespace fsi {
 
 struct Mesh {
-  DM dm = nullptr;          // distributed, interpolated tetrahedral DMPlex
-  std::string source;       // the .msh actually read
+  DM dm = nullptr;    // distributed, interpolated tetrahedral DMPlex
+  std::string source; // the .msh actually read
   PetscInt cells_global = 0;
   PetscInt vertices_global = 0;
 

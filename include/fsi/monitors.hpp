@@ -21,7 +21,8 @@ struct ErrorNorms {
 
 class Monitors {
 public:
-  void setup(const Mesh &mesh, const Space &space, const FluidModule *fluid, const ExactFlow *exact);
+  void setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
+             const ExactFlow *exact);
   std::vector<std::string> columns() const;
   std::vector<double> evaluate(const Problem &pb);
   const ErrorNorms &last_errors() const { return err_; }
@@ -30,9 +31,9 @@ public:
 private:
   struct Probe {
     double x[3];
-    int owner = -1;         // rank that evaluates it
-    PetscInt cell = -1;     // local cell index on the owner
-    double lambda[4] = {};  // barycentric coordinates in that cell
+    int owner = -1;        // rank that evaluates it
+    PetscInt cell = -1;    // local cell index on the owner
+    double lambda[4] = {}; // barycentric coordinates in that cell
   };
   ErrorNorms errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
                     const std::vector<double> &Xp, double tp) const;

@@ -31,18 +31,22 @@ struct TetGeometry {
 inline void p2_tet(const double l[4], const double gl[4][3], double N[10], double dN[10][3]) {
   for (int i = 0; i < 4; ++i) {
     N[i] = l[i] * (2 * l[i] - 1);
-    for (int d = 0; d < 3; ++d) dN[i][d] = (4 * l[i] - 1) * gl[i][d];
+    for (int d = 0; d < 3; ++d)
+      dN[i][d] = (4 * l[i] - 1) * gl[i][d];
   }
   for (int k = 0; k < 6; ++k) {
     const int a = TET_EDGE[k][0], b = TET_EDGE[k][1];
     N[4 + k] = 4 * l[a] * l[b];
-    for (int d = 0; d < 3; ++d) dN[4 + k][d] = 4 * (l[a] * gl[b][d] + l[b] * gl[a][d]);
+    for (int d = 0; d < 3; ++d)
+      dN[4 + k][d] = 4 * (l[a] * gl[b][d] + l[b] * gl[a][d]);
   }
 }
 
 inline void p2_tri(const double l[3], double N[6]) {
-  for (int i = 0; i < 3; ++i) N[i] = l[i] * (2 * l[i] - 1);
-  for (int k = 0; k < 3; ++k) N[3 + k] = 4 * l[TRI_EDGE[k][0]] * l[TRI_EDGE[k][1]];
+  for (int i = 0; i < 3; ++i)
+    N[i] = l[i] * (2 * l[i] - 1);
+  for (int k = 0; k < 3; ++k)
+    N[3 + k] = 4 * l[TRI_EDGE[k][0]] * l[TRI_EDGE[k][1]];
 }
 
 } // namespace fsi

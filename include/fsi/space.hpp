@@ -13,30 +13,30 @@
 namespace fsi {
 
 struct BoundaryFace {
-  PetscInt cell;      // local cell index (0-based among cells)
-  int vertex[3];      // local vertex indices of the face, in P2 triangle node order
-  int opposite;       // local vertex index of the cell vertex not on the face
-  PetscInt vdof[6];   // first local velocity dof of the 6 face nodes (3 vertices, 3 edges)
-  PetscInt pdof[3];   // local pressure dofs of the face vertices
+  PetscInt cell;    // local cell index (0-based among cells)
+  int vertex[3];    // local vertex indices of the face, in P2 triangle node order
+  int opposite;     // local vertex index of the cell vertex not on the face
+  PetscInt vdof[6]; // first local velocity dof of the 6 face nodes (3 vertices, 3 edges)
+  PetscInt pdof[3]; // local pressure dofs of the face vertices
 };
 
 struct DofNode {
-  PetscInt dof;   // first local dof (velocity: x component; pressure: the dof)
-  int va, vb;     // local vertex indices; vb = -1 for a vertex node, else edge midpoint
+  PetscInt dof; // first local dof (velocity: x component; pressure: the dof)
+  int va, vb;   // local vertex indices; vb = -1 for a vertex node, else edge midpoint
 };
 
 struct Space {
   DM dm = nullptr; // the mesh DM, carrying our section
   PetscInt cStart = 0, cEnd = 0, vStart = 0, vEnd = 0, eStart = 0, eEnd = 0;
-  PetscInt n_local = 0;                 // local (ghosted) dof count
-  PetscInt n_owned = 0, rstart = 0;     // owned global dofs
+  PetscInt n_local = 0;                    // local (ghosted) dof count
+  PetscInt n_owned = 0, rstart = 0;        // owned global dofs
   PetscInt n_velocity = 0, n_pressure = 0; // global dof counts per field
-  std::vector<int> cell_vertex;         // 4 per cell
-  std::vector<PetscInt> cell_vdof;      // 10 per cell: first local dof of each velocity node
-  std::vector<PetscInt> cell_pdof;      // 4 per cell
-  std::vector<double> X;                // 3 per local vertex, reference coordinates
-  std::vector<PetscInt> local_to_global; // per local dof, global index
-  ISLocalToGlobalMapping l2g = nullptr;  // the same, for MatSetValuesLocal
+  std::vector<int> cell_vertex;            // 4 per cell
+  std::vector<PetscInt> cell_vdof;         // 10 per cell: first local dof of each velocity node
+  std::vector<PetscInt> cell_pdof;         // 4 per cell
+  std::vector<double> X;                   // 3 per local vertex, reference coordinates
+  std::vector<PetscInt> local_to_global;   // per local dof, global index
+  ISLocalToGlobalMapping l2g = nullptr;    // the same, for MatSetValuesLocal
   IS is_velocity = nullptr, is_pressure = nullptr;
   // Our own global <-> local scatter built from local_to_global (the DM's section SF is not used).
   VecScatter g2l = nullptr;
@@ -62,7 +62,6 @@ struct Space {
   // Local pressure dof of the vertex with the smallest global pressure index, or -1 if this rank
   // does not see it; `vertex` receives its local vertex index.
   PetscInt pinned_pressure_dof(int &vertex) const;
-
 };
 
 } // namespace fsi

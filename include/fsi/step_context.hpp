@@ -17,9 +17,9 @@ struct StepContext {
   const PetscScalar *Vn = nullptr; // solution at t_n
   const PetscScalar *An = nullptr; // time derivative at t_n
   // mesh (3 per local vertex)
-  const double *X_af = nullptr;  // vertex coordinates at t_{n+alpha_f} (momentum)
-  const double *X_np1 = nullptr; // vertex coordinates at t_{n+1} (continuity)
-  const double *W = nullptr;    // mesh velocity, nullptr for a fixed mesh
+  const double *X_af = nullptr;                    // vertex coordinates at t_{n+alpha_f} (momentum)
+  const double *X_np1 = nullptr;                   // vertex coordinates at t_{n+1} (continuity)
+  const double *W = nullptr;                       // mesh velocity, nullptr for a fixed mesh
   const std::vector<char> *is_dirichlet = nullptr; // per local dof
 
   // Stage values of a velocity dof: v_{n+af} and dv/dt_{n+am}.

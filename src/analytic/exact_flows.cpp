@@ -11,7 +11,8 @@ void ExactFlow::stress(const double x[3], double t, double mu, double s[3][3]) c
   velocity_gradient(x, t, g);
   const double p = pressure(x, t);
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) s[i][j] = mu * (g[i][j] + g[j][i]) - (i == j ? p : 0.0);
+    for (int j = 0; j < 3; ++j)
+      s[i][j] = mu * (g[i][j] + g[j][i]) - (i == j ? p : 0.0);
 }
 
 namespace {
@@ -26,8 +27,10 @@ struct EthierSteinman : ExactFlow {
     const double decay = std::exp(-nu * d * d * t);
     for (int i = 0; i < 3; ++i) {
       const double X = x[i], Y = x[(i + 1) % 3], Z = x[(i + 2) % 3];
-      v[i] = -a * (std::exp(a * X) * std::sin(a * Y + d * Z) +
-                   std::exp(a * Z) * std::cos(a * X + d * Y)) * decay;
+      v[i] =
+          -a *
+          (std::exp(a * X) * std::sin(a * Y + d * Z) + std::exp(a * Z) * std::cos(a * X + d * Y)) *
+          decay;
     }
   }
   void velocity_gradient(const double x[3], double t, double g[3][3]) const override {
@@ -63,7 +66,8 @@ struct Poiseuille : ExactFlow {
     v[2] = G * (R * R - r2) / (4 * mu);
   }
   void velocity_gradient(const double x[3], double, double g[3][3]) const override {
-    for (int i = 0; i < 3; ++i) g[i][0] = g[i][1] = g[i][2] = 0;
+    for (int i = 0; i < 3; ++i)
+      g[i][0] = g[i][1] = g[i][2] = 0;
     g[2][0] = -G * x[0] / (2 * mu);
     g[2][1] = -G * x[1] / (2 * mu);
   }
@@ -76,7 +80,8 @@ using cplx = std::complex<double>;
 // for |z| < 20, ample for Womersley numbers up to ~15).
 cplx bessel_j(int n, cplx z) {
   cplx term = std::pow(z / 2.0, n), sum = 0;
-  for (int k = 1; k <= n; ++k) term /= double(k);
+  for (int k = 1; k <= n; ++k)
+    term /= double(k);
   const cplx q = -(z * z) / 4.0;
   for (int k = 0; k < 200; ++k) {
     sum += term;
@@ -96,14 +101,17 @@ struct Womersley : ExactFlow {
     Lambda = std::pow(cplx(0, 1), 1.5) * alpha;
     J0L = bessel_j(0, Lambda);
   }
-  cplx coef(double t) const { return A / (cplx(0, 1) * omega * rho) * std::exp(cplx(0, omega * t)); }
+  cplx coef(double t) const {
+    return A / (cplx(0, 1) * omega * rho) * std::exp(cplx(0, omega * t));
+  }
   void velocity(const double x[3], double t, double v[3]) const override {
     const double r = std::sqrt(x[0] * x[0] + x[1] * x[1]);
     v[0] = v[1] = 0;
     v[2] = std::real(coef(t) * (1.0 - bessel_j(0, Lambda * r / R) / J0L));
   }
   void velocity_gradient(const double x[3], double t, double g[3][3]) const override {
-    for (int i = 0; i < 3; ++i) g[i][0] = g[i][1] = g[i][2] = 0;
+    for (int i = 0; i < 3; ++i)
+      g[i][0] = g[i][1] = g[i][2] = 0;
     const double r = std::sqrt(x[0] * x[0] + x[1] * x[1]);
     if (r < 1e-300) return;
     // d/dr [1 - J0(k r)/J0(Lambda)] = k J1(k r) / J0(Lambda), k = Lambda / R
@@ -128,10 +136,9 @@ std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu) {
                                         opt::required_positive("exact_R"), mu,
                                         opt::nonnegative("exact_L", 0));
   if (kind == "womersley")
-    return std::make_unique<Womersley>(opt::required_positive("exact_A"),
-                                       opt::required_positive("exact_period"),
-                                       opt::required_positive("exact_R"), rho, mu,
-                                       opt::nonnegative("exact_L", 0));
+    return std::make_unique<Womersley>(
+        opt::required_positive("exact_A"), opt::required_positive("exact_period"),
+        opt::required_positive("exact_R"), rho, mu, opt::nonnegative("exact_L", 0));
   return nullptr;
 }
 

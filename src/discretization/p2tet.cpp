@@ -12,7 +12,8 @@ static QuadRule simplex_rule(int dim, int degree) {
   // PETSc's reference simplex is the bi-unit one: vertices (-1,..), (1,-1,..), ...
   QuadRule r;
   double wsum = 0;
-  for (PetscInt p = 0; p < np; ++p) wsum += w[p];
+  for (PetscInt p = 0; p < np; ++p)
+    wsum += w[p];
   const double ref_measure = dim == 3 ? 1.0 / 6.0 : 0.5;
   for (PetscInt p = 0; p < np; ++p) {
     std::array<double, 4> l{0, 0, 0, 0};
@@ -29,13 +30,18 @@ static QuadRule simplex_rule(int dim, int degree) {
   return r;
 }
 
-QuadRule tet_rule(int degree) { return simplex_rule(3, degree); }
-QuadRule tri_rule(int degree) { return simplex_rule(2, degree); }
+QuadRule tet_rule(int degree) {
+  return simplex_rule(3, degree);
+}
+QuadRule tri_rule(int degree) {
+  return simplex_rule(2, degree);
+}
 
 void TetGeometry::set(const double X[4][3]) {
   double J[3][3]; // columns: X1-X0, X2-X0, X3-X0
   for (int d = 0; d < 3; ++d)
-    for (int k = 0; k < 3; ++k) J[d][k] = X[k + 1][d] - X[0][d];
+    for (int k = 0; k < 3; ++k)
+      J[d][k] = X[k + 1][d] - X[0][d];
   detJ = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
          J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
          J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
@@ -54,7 +60,8 @@ void TetGeometry::set(const double X[4][3]) {
   Ji[2][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) * inv;
   for (int d = 0; d < 3; ++d) {
     grad_lambda[0][d] = -(Ji[0][d] + Ji[1][d] + Ji[2][d]);
-    for (int k = 0; k < 3; ++k) grad_lambda[k + 1][d] = Ji[k][d];
+    for (int k = 0; k < 3; ++k)
+      grad_lambda[k + 1][d] = Ji[k][d];
   }
 }
 

@@ -16,7 +16,8 @@ void Space::check_numbering() const {
     if (p >= vEnd && p < eStart) continue;
     double x[3];
     if (p < vEnd) {
-      for (int d = 0; d < 3; ++d) x[d] = X[3 * (p - vStart) + d];
+      for (int d = 0; d < 3; ++d)
+        x[d] = X[3 * (p - vStart) + d];
     } else {
       const PetscInt *cone;
       FSI_CALL(DMPlexGetCone(dm, p, &cone));
@@ -26,7 +27,8 @@ void Space::check_numbering() const {
     PetscInt dof, off;
     FSI_CALL(PetscSectionGetDof(ls, p, &dof));
     FSI_CALL(PetscSectionGetOffset(ls, p, &off));
-    for (PetscInt i = 0; i < dof; ++i) pos[off + i] = x[i % 3] + 10 * x[(i + 1) % 3] + 100 * x[(i + 2) % 3];
+    for (PetscInt i = 0; i < dof; ++i)
+      pos[off + i] = x[i % 3] + 10 * x[(i + 1) % 3] + 100 * x[(i + 2) % 3];
   }
   Vec g = create_global(), l = create_local();
   PetscScalar *ga, *la;
@@ -43,7 +45,9 @@ void Space::check_numbering() const {
   FSI_CALL(VecDestroy(&g));
   FSI_CALL(VecDestroy(&l));
   MPI_Allreduce(&bad, &gbad, 1, MPI_INT, MPI_SUM, PetscObjectComm((PetscObject)dm));
-  if (gbad) throw PetscFailure("internal: " + std::to_string(gbad) + " local dofs map to the wrong global dof");
+  if (gbad)
+    throw PetscFailure("internal: " + std::to_string(gbad) +
+                       " local dofs map to the wrong global dof");
 }
 
 Vec Space::create_global() const {
@@ -160,14 +164,16 @@ void Space::build(const Mesh &mesh) {
     if (dof <= 0) continue;
     FSI_CALL(PetscSectionGetOffset(ls, p, &loff));
     const PetscInt g0 = ghost[p - pStart] ? gleaf[p - pStart] : goff[p - pStart];
-    for (PetscInt i = 0; i < dof; ++i) local_to_global[loff + i] = g0 + i;
+    for (PetscInt i = 0; i < dof; ++i)
+      local_to_global[loff + i] = g0 + i;
   }
   FSI_CALL(ISLocalToGlobalMappingCreate(PETSC_COMM_SELF, 1, n_local, local_to_global.data(),
                                         PETSC_COPY_VALUES, &l2g));
   {
     Vec gv = create_global(), lv = create_local();
     IS from, to;
-    FSI_CALL(ISCreateGeneral(PETSC_COMM_SELF, n_local, local_to_global.data(), PETSC_COPY_VALUES, &from));
+    FSI_CALL(ISCreateGeneral(PETSC_COMM_SELF, n_local, local_to_global.data(), PETSC_COPY_VALUES,
+                             &from));
     FSI_CALL(ISCreateStride(PETSC_COMM_SELF, n_local, 0, 1, &to));
     FSI_CALL(VecScatterCreate(gv, from, lv, to, &g2l));
     FSI_CALL(ISDestroy(&from));
@@ -184,7 +190,8 @@ void Space::build(const Mesh &mesh) {
     if (dof <= 0 || ghost[p - pStart]) continue;
     PetscInt fo;
     FSI_CALL(PetscSectionGetFieldOffset(ls, p, 0, &fo));
-    for (int c = 0; c < 3; ++c) iv.push_back(local_to_global[fo + c]);
+    for (int c = 0; c < 3; ++c)
+      iv.push_back(local_to_global[fo + c]);
     if (p >= vStart && p < vEnd) {
       FSI_CALL(PetscSectionGetFieldOffset(ls, p, 1, &fo));
       ip.push_back(local_to_global[fo]);
@@ -207,7 +214,8 @@ void Space::build(const Mesh &mesh) {
   for (PetscInt v = vStart; v < vEnd; ++v) {
     PetscInt off;
     FSI_CALL(PetscSectionGetOffset(cs, v, &off));
-    for (int d = 0; d < 3; ++d) X[3 * (v - vStart) + d] = PetscRealPart(ca[off + d]);
+    for (int d = 0; d < 3; ++d)
+      X[3 * (v - vStart) + d] = PetscRealPart(ca[off + d]);
   }
   FSI_CALL(VecRestoreArrayRead(coords, &ca));
 
@@ -226,11 +234,14 @@ void Space::build(const Mesh &mesh) {
     int ne = 0;
     for (PetscInt i = 0; i < ncl; ++i) {
       PetscInt p = cl[2 * i];
-      if (p >= vStart && p < vEnd) verts[nv++] = p;
-      else if (p >= eStart && p < eEnd) edges[ne++] = p;
+      if (p >= vStart && p < vEnd)
+        verts[nv++] = p;
+      else if (p >= eStart && p < eEnd)
+        edges[ne++] = p;
     }
     FSI_CALL(DMPlexRestoreTransitiveClosure(dm, c, PETSC_TRUE, &ncl, &cl));
-    if (nv != 4 || ne != 6) throw InputError("the mesh has a non-tetrahedral cell: fsi_app needs tetrahedra");
+    if (nv != 4 || ne != 6)
+      throw InputError("the mesh has a non-tetrahedral cell: fsi_app needs tetrahedra");
     const PetscInt k = c - cStart;
     for (int i = 0; i < 4; ++i) {
       cell_vertex[4 * k + i] = (int)(verts[i] - vStart);
@@ -281,8 +292,10 @@ std::vector<BoundaryFace> Space::boundary_faces(const Mesh &mesh, const std::str
     PetscInt verts[3], edges[3];
     for (PetscInt i = 0; i < ncl; ++i) {
       PetscInt p = cl[2 * i];
-      if (p >= vStart && p < vEnd) verts[nv++] = p;
-      else if (p >= eStart && p < eEnd) edges[ne++] = p;
+      if (p >= vStart && p < vEnd)
+        verts[nv++] = p;
+      else if (p >= eStart && p < eEnd)
+        edges[ne++] = p;
     }
     FSI_CALL(DMPlexRestoreTransitiveClosure(dm, f, PETSC_TRUE, &ncl, &cl));
     for (int i = 0; i < 3; ++i) {
@@ -309,7 +322,8 @@ std::vector<BoundaryFace> Space::boundary_faces(const Mesh &mesh, const std::str
   return out;
 }
 
-std::vector<DofNode> Space::boundary_velocity_nodes(const Mesh &mesh, const std::string &name) const {
+std::vector<DofNode> Space::boundary_velocity_nodes(const Mesh &mesh,
+                                                    const std::string &name) const {
   DMLabel src = mesh.label(name);
   // A completed copy of the face label: closure points, synchronised over the point SF.
   const std::string cname = "__closure_" + name;

@@ -33,7 +33,8 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(sp
   const PetscScalar *la;
   FSI_CALL(VecGetArrayRead(l, &la));
   std::vector<PetscInt> vid(space.n_vertices());
-  for (PetscInt v = 0; v < space.n_vertices(); ++v) vid[v] = (PetscInt)PetscRealPart(la[pdof[v]]);
+  for (PetscInt v = 0; v < space.n_vertices(); ++v)
+    vid[v] = (PetscInt)PetscRealPart(la[pdof[v]]);
   FSI_CALL(VecRestoreArrayRead(l, &la));
   FSI_CALL(VecDestroy(&g));
   FSI_CALL(VecDestroy(&l));
@@ -45,7 +46,8 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(sp
   PetscScalar *ca;
   FSI_CALL(VecGetArray(cells, &ca));
   for (PetscInt k = 0; k < nc; ++k)
-    for (int i = 0; i < 4; ++i) ca[4 * k + i] = vid[space.cell_vertex[4 * k + i]];
+    for (int i = 0; i < 4; ++i)
+      ca[4 * k + i] = vid[space.cell_vertex[4 * k + i]];
   FSI_CALL(VecRestoreArray(cells, &ca));
   FSI_CALL(PetscObjectSetName((PetscObject)cells, "cells"));
   FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/topology"));
@@ -56,7 +58,8 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(sp
   PetscScalar *xa;
   FSI_CALL(VecGetArray(xv, &xa));
   for (PetscInt i = 0; i < nv_owned_; ++i)
-    for (int d = 0; d < 3; ++d) xa[3 * i + d] = space.X[3 * owned_vertices_[i] + d];
+    for (int d = 0; d < 3; ++d)
+      xa[3 * i + d] = space.X[3 * owned_vertices_[i] + d];
   FSI_CALL(VecRestoreArray(xv, &xa));
   FSI_CALL(PetscObjectSetName((PetscObject)xv, "vertices"));
   FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/geometry"));
@@ -71,7 +74,8 @@ FieldWriter::~FieldWriter() {
 
 Vec FieldWriter::vertex_vec(int bs) const {
   Vec v;
-  FSI_CALL(VecCreateMPI(PetscObjectComm((PetscObject)space_.dm), bs * nv_owned_, PETSC_DETERMINE, &v));
+  FSI_CALL(
+      VecCreateMPI(PetscObjectComm((PetscObject)space_.dm), bs * nv_owned_, PETSC_DETERMINE, &v));
   FSI_CALL(VecSetBlockSize(v, bs));
   return v;
 }
@@ -104,7 +108,9 @@ void FieldWriter::write(long step, double t, Vec U_local, const std::vector<doub
   char tag[32];
   std::snprintf(tag, sizeof tag, "_%06ld", step);
   FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/fields"));
-  for (auto [vec, name] : {std::pair<Vec, const char *>{vel, "velocity"}, {p, "pressure"}, {disp, "mesh_displacement"}}) {
+  for (auto [vec, name] : {std::pair<Vec, const char *>{vel, "velocity"},
+                           {p, "pressure"},
+                           {disp, "mesh_displacement"}}) {
     FSI_CALL(PetscObjectSetName((PetscObject)vec, (std::string(name) + tag).c_str()));
     FSI_CALL(VecView(vec, h5_));
     FSI_CALL(VecDestroy(&vec));
@@ -130,15 +136,21 @@ void FieldWriter::close() {
     f << "   <Grid Name=\"step" << tag << "\" GridType=\"Uniform\">\n"
       << "    <Time Value=\"" << t << "\"/>\n"
       << "    <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << nc << "\">\n"
-      << "     <DataItem Dimensions=\"" << nc << " 4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/topology/cells</DataItem>\n"
+      << "     <DataItem Dimensions=\"" << nc
+      << " 4\" NumberType=\"Float\" Precision=\"8\" "
+         "Format=\"HDF\">fields.h5:/topology/cells</DataItem>\n"
       << "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n"
-      << "     <DataItem Dimensions=\"" << nv << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
+      << "     <DataItem Dimensions=\"" << nv
+      << " 3\" NumberType=\"Float\" Precision=\"8\" "
+         "Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
       << "    </Geometry>\n";
-    for (auto [name, nc_] : {std::pair<const char *, int>{"velocity", 3}, {"pressure", 1}, {"mesh_displacement", 3}})
-      f << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << (nc_ == 3 ? "Vector" : "Scalar")
-        << "\" Center=\"Node\">\n     <DataItem Dimensions=\"" << nv << (nc_ == 3 ? " 3" : "")
-        << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/" << name << tag
-        << "</DataItem>\n    </Attribute>\n";
+    for (auto [name, nc_] :
+         {std::pair<const char *, int>{"velocity", 3}, {"pressure", 1}, {"mesh_displacement", 3}})
+      f << "    <Attribute Name=\"" << name << "\" AttributeType=\""
+        << (nc_ == 3 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n     <DataItem Dimensions=\""
+        << nv << (nc_ == 3 ? " 3" : "")
+        << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/" << name
+        << tag << "</DataItem>\n    </Attribute>\n";
     f << "   </Grid>\n";
   }
   f << "  </Grid>\n </Domain>\n</Xdmf>\n";

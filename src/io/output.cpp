@@ -22,8 +22,10 @@ static std::string quote(const std::string &s) {
 
 Json &Json::set(const std::string &k, double v) {
   char b[64];
-  if (std::isfinite(v)) std::snprintf(b, sizeof b, "%.10g", v);
-  else std::snprintf(b, sizeof b, "null");
+  if (std::isfinite(v))
+    std::snprintf(b, sizeof b, "%.10g", v);
+  else
+    std::snprintf(b, sizeof b, "null");
   items_.emplace_back(k, b);
   return *this;
 }
@@ -45,7 +47,8 @@ Json &Json::set(const std::string &k, const Json &v) {
 }
 Json &Json::set(const std::string &k, const std::vector<std::string> &v) {
   std::string s = "[";
-  for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + quote(v[i]);
+  for (size_t i = 0; i < v.size(); ++i)
+    s += (i ? ", " : "") + quote(v[i]);
   items_.emplace_back(k, s + "]");
   return *this;
 }
@@ -57,7 +60,8 @@ std::string Json::str(int indent) const {
     if (!v.empty() && v[0] == '\x01') { // nested: indent its lines
       v = v.substr(1);
       std::string r;
-      for (char c : v) r += c == '\n' ? std::string("\n") + pad : std::string(1, c);
+      for (char c : v)
+        r += c == '\n' ? std::string("\n") + pad : std::string(1, c);
       v = r;
     }
     out += pad + quote(items_[i].first) + ": " + v + (i + 1 < items_.size() ? ",\n" : "\n");
@@ -78,7 +82,8 @@ Output::Output(MPI_Comm comm, const std::string &dir) : comm_(comm), dir_(dir) {
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
   if (!ok)
-    throw InputError("output directory " + dir + " cannot be created or written: choose another -out_dir");
+    throw InputError("output directory " + dir +
+                     " cannot be created or written: choose another -out_dir");
 }
 
 Output::~Output() {
@@ -102,13 +107,15 @@ void Output::write_options() const {
   std::string s(all ? all : "");
   FSI_CALL(PetscFree(all));
   std::string o;
-  for (char c : s) o += c;
+  for (char c : s)
+    o += c;
   // one option per line
   std::string lines;
   std::stringstream ss(o);
   std::string tok, cur;
   while (ss >> tok) {
-    if (tok[0] == '-' && !cur.empty() && !(tok.size() > 1 && (std::isdigit(tok[1]) || tok[1] == '.'))) {
+    if (tok[0] == '-' && !cur.empty() &&
+        !(tok.size() > 1 && (std::isdigit(tok[1]) || tok[1] == '.'))) {
       lines += cur + "\n";
       cur.clear();
     }
@@ -123,13 +130,15 @@ void Output::open_monitor(const std::vector<std::string> &columns) {
   monitor_ = std::fopen((dir_ + "/monitor.csv.partial").c_str(), "w");
   if (!monitor_) throw InputError("cannot write " + dir_ + "/monitor.csv.partial");
   std::fprintf(monitor_, "step,time,newton,krylov,step_seconds");
-  for (auto &c : columns) std::fprintf(monitor_, ",%s", c.c_str());
+  for (auto &c : columns)
+    std::fprintf(monitor_, ",%s", c.c_str());
   std::fprintf(monitor_, "\n");
 }
 
 void Output::monitor_row(const std::vector<double> &v) {
   if (!monitor_) return;
-  for (size_t i = 0; i < v.size(); ++i) std::fprintf(monitor_, i ? ",%.15g" : "%.15g", v[i]);
+  for (size_t i = 0; i < v.size(); ++i)
+    std::fprintf(monitor_, i ? ",%.15g" : "%.15g", v[i]);
   std::fprintf(monitor_, "\n");
   std::fflush(monitor_);
 }
@@ -141,6 +150,8 @@ void Output::close_monitor() {
   std::rename((dir_ + "/monitor.csv.partial").c_str(), (dir_ + "/monitor.csv").c_str());
 }
 
-void Output::write_summary(const Json &j) const { write_atomic("summary.json", j.str() + "\n"); }
+void Output::write_summary(const Json &j) const {
+  write_atomic("summary.json", j.str() + "\n");
+}
 
 } // namespace fsi

@@ -37,7 +37,8 @@ bool Mesh::has_group(const std::string &name) const {
 }
 
 DMLabel Mesh::label(const std::string &name) const {
-  if (!has_group(name)) throw InputError("mesh " + source + " has no physical group '" + name + "'");
+  if (!has_group(name))
+    throw InputError("mesh " + source + " has no physical group '" + name + "'");
   PetscBool has = PETSC_FALSE;
   FSI_CALL(DMHasLabel(dm, name.c_str(), &has));
   if (!has) FSI_CALL(DMCreateLabel(dm, name.c_str())); // empty on this rank
@@ -52,7 +53,8 @@ void Mesh::require_groups(const std::vector<std::string> &names, const std::stri
     if (!has_group(n)) missing.push_back(n);
   if (!missing.empty())
     throw InputError("mesh " + source + " lacks physical group(s) " + opt::join(missing) +
-                     " needed by " + why + ": add them to the .geo (Physical Volume/Surface) or fix the name");
+                     " needed by " + why +
+                     ": add them to the .geo (Physical Volume/Surface) or fix the name");
 }
 
 std::vector<PetscInt> Mesh::cells_in(const std::string &name) const {
@@ -60,7 +62,8 @@ std::vector<PetscInt> Mesh::cells_in(const std::string &name) const {
   FSI_CALL(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   std::vector<PetscInt> cells;
   if (name.empty()) {
-    for (PetscInt c = cStart; c < cEnd; ++c) cells.push_back(c);
+    for (PetscInt c = cStart; c < cEnd; ++c)
+      cells.push_back(c);
     return cells;
   }
   DMLabel l = label(name);
@@ -83,7 +86,8 @@ static void generate_with_gmsh(const std::string &geo, double h,
     args.insert(args.end(), {"-setnumber", p.substr(0, eq), p.substr(eq + 1)});
   }
   std::vector<char *> argv;
-  for (auto &a : args) argv.push_back(const_cast<char *>(a.c_str()));
+  for (auto &a : args)
+    argv.push_back(const_cast<char *>(a.c_str()));
   gmsh::initialize((int)argv.size(), argv.data(), false);
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);
@@ -145,12 +149,12 @@ void load_mesh(MPI_Comm comm, Mesh &mesh) {
     file = resolve_path(opt::required_string("mesh_file"));
   } else if (opt::has("mesh_geo")) {
     std::string geo = resolve_path(opt::required_string("mesh_geo"));
-    if (!file_exists(geo))
-      throw InputError("mesh source " + geo + " not found: check -mesh_geo");
+    if (!file_exists(geo)) throw InputError("mesh source " + geo + " not found: check -mesh_geo");
     double h = opt::positive("mesh_h", 0.1);
     file = cached_mesh(comm, geo, h, opt::list("mesh_params"));
   } else {
-    throw InputError("the scene names no mesh: give -mesh_file FILE.msh or -mesh_geo FILE.geo -mesh_h SIZE");
+    throw InputError(
+        "the scene names no mesh: give -mesh_file FILE.msh or -mesh_geo FILE.geo -mesh_h SIZE");
   }
   if (!file_exists(file))
     throw InputError("mesh file " + file + " not found: check -mesh_file (or run scripts/setup)");
@@ -162,10 +166,12 @@ void load_mesh(MPI_Comm comm, Mesh &mesh) {
   FSI_CALL(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
   PetscErrorCode ierr = DMPlexCreateFromFile(comm, file.c_str(), "fsi", PETSC_TRUE, &dm);
   FSI_CALL(PetscPopErrorHandler());
-  if (ierr) throw InputError("mesh file " + file + " could not be read as a gmsh .msh mesh: regenerate it");
+  if (ierr)
+    throw InputError("mesh file " + file + " could not be read as a gmsh .msh mesh: regenerate it");
   PetscInt dim;
   FSI_CALL(DMGetDimension(dm, &dim));
-  if (dim != 3) throw InputError("mesh " + file + " is not 3D (dimension " + std::to_string(dim) + ")");
+  if (dim != 3)
+    throw InputError("mesh " + file + " is not 3D (dimension " + std::to_string(dim) + ")");
   FSI_CALL(PetscObjectSetName((PetscObject)dm, "mesh"));
 
   PetscPartitioner part;

@@ -5,8 +5,10 @@
 
 namespace fsi {
 
-void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu) {
+void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu,
+                       double rho) {
   space_ = &space;
+  rho_ = rho;
   exact_ = exact;
   mu_ = mu;
   face_rule_ = tri_rule(4);
@@ -35,12 +37,14 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
         if (d.size() != 3) throw InputError("option -" + pre + "direction needs 3 numbers x,y,z");
         double nrm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (nrm == 0) throw InputError("option -" + pre + "direction must be non-zero");
-        for (int i = 0; i < 3; ++i) bc.dir[i] = d[i] / nrm;
+        for (int i = 0; i < 3; ++i)
+          bc.dir[i] = d[i] / nrm;
       }
       if (bc.profile == "parabolic") {
         auto c = opt::reals(pre + "center");
         if (c.size() != 3) throw InputError("option -" + pre + "center needs 3 numbers x,y,z");
-        for (int i = 0; i < 3; ++i) bc.center[i] = c[i];
+        for (int i = 0; i < 3; ++i)
+          bc.center[i] = c[i];
         bc.radius = opt::required_positive(pre + "radius");
       }
       bc.wave = Waveform::from_options(pre);
@@ -48,6 +52,7 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
     if (type == "pressure") {
       bc.type = BoundaryCondition::Pressure;
       bc.value = opt::real(pre + "value", 0);
+      bc.beta = opt::nonnegative(pre + "backflow_beta", 0.2);
       bc.wave = Waveform::from_options(pre);
     }
     if (type == "traction_exact") {
@@ -57,7 +62,8 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
     if (bc.type == BoundaryCondition::NoSlip || bc.type == BoundaryCondition::Velocity) {
       bc.nodes = space.boundary_velocity_nodes(mesh, n);
       for (auto &nd : bc.nodes)
-        for (int i = 0; i < 3; ++i) mask_[nd.dof + i] = 1;
+        for (int i = 0; i < 3; ++i)
+          mask_[nd.dof + i] = 1;
     } else {
       bc.faces = space.boundary_faces(mesh, n);
       level_fixed = true;
@@ -89,14 +95,18 @@ void Boundaries::dirichlet_values(double t, const double *X,
           double mag = bc.value * scale;
           if (bc.profile == "parabolic") {
             double r[3], along = 0, r2 = 0;
-            for (int d = 0; d < 3; ++d) r[d] = x[d] - bc.center[d], along += r[d] * bc.dir[d];
-            for (int d = 0; d < 3; ++d) r2 += std::pow(r[d] - along * bc.dir[d], 2);
+            for (int d = 0; d < 3; ++d)
+              r[d] = x[d] - bc.center[d], along += r[d] * bc.dir[d];
+            for (int d = 0; d < 3; ++d)
+              r2 += std::pow(r[d] - along * bc.dir[d], 2);
             mag *= std::max(0.0, 2.0 * (1.0 - r2 / (bc.radius * bc.radius)));
           }
-          for (int d = 0; d < 3; ++d) v[d] = mag * bc.dir[d];
+          for (int d = 0; d < 3; ++d)
+            v[d] = mag * bc.dir[d];
         }
       }
-      for (int d = 0; d < 3; ++d) out.emplace_back(nd.dof + d, v[d]);
+      for (int d = 0; d < 3; ++d)
+        out.emplace_back(nd.dof + d, v[d]);
     }
   }
   if (pin_dof_ >= 0) {
@@ -106,7 +116,8 @@ void Boundaries::dirichlet_values(double t, const double *X,
   }
   // A node on two Dirichlet boundaries keeps the value of the one listed last.
   std::vector<int> last(space_->n_local, -1);
-  for (size_t i = 0; i < out.size(); ++i) last[out[i].first] = (int)i;
+  for (size_t i = 0; i < out.size(); ++i)
+    last[out[i].first] = (int)i;
   size_t k = 0;
   for (size_t i = 0; i < out.size(); ++i)
     if (last[out[i].first] == (int)i) out[k++] = out[i];
@@ -121,41 +132,125 @@ void Boundaries::add_traction_residual(const StepContext &ctx, PetscScalar *F) c
     for (auto &f : bc.faces) {
       double X[3][3], Xo[3];
       for (int i = 0; i < 3; ++i)
-        for (int d = 0; d < 3; ++d) X[i][d] = ctx.X_af[3 * f.vertex[i] + d];
-      for (int d = 0; d < 3; ++d) Xo[d] = ctx.X_af[3 * f.opposite + d];
+        for (int d = 0; d < 3; ++d)
+          X[i][d] = ctx.X_af[3 * f.vertex[i] + d];
+      for (int d = 0; d < 3; ++d)
+        Xo[d] = ctx.X_af[3 * f.opposite + d];
       double e1[3], e2[3], nA[3];
-      for (int d = 0; d < 3; ++d) e1[d] = X[1][d] - X[0][d], e2[d] = X[2][d] - X[0][d];
+      for (int d = 0; d < 3; ++d)
+        e1[d] = X[1][d] - X[0][d], e2[d] = X[2][d] - X[0][d];
       nA[0] = e1[1] * e2[2] - e1[2] * e2[1];
       nA[1] = e1[2] * e2[0] - e1[0] * e2[2];
       nA[2] = e1[0] * e2[1] - e1[1] * e2[0];
       // Orient outward: away from the cell's opposite vertex.
       double out = 0;
-      for (int d = 0; d < 3; ++d) out += nA[d] * (X[0][d] - Xo[d]);
+      for (int d = 0; d < 3; ++d)
+        out += nA[d] * (X[0][d] - Xo[d]);
       if (out < 0)
-        for (double &c : nA) c = -c;
+        for (double &c : nA)
+          c = -c;
       const double area2 = std::sqrt(nA[0] * nA[0] + nA[1] * nA[1] + nA[2] * nA[2]); // 2 * area
       double n[3];
-      for (int d = 0; d < 3; ++d) n[d] = nA[d] / area2;
+      for (int d = 0; d < 3; ++d)
+        n[d] = nA[d] / area2;
       double Fe[6][3] = {};
       for (size_t q = 0; q < face_rule_.weight.size(); ++q) {
         const double *l = face_rule_.lambda[q].data();
         double N[6], x[3] = {0, 0, 0}, tr[3];
         p2_tri(l, N);
         for (int i = 0; i < 3; ++i)
-          for (int d = 0; d < 3; ++d) x[d] += l[i] * X[i][d];
+          for (int d = 0; d < 3; ++d)
+            x[d] += l[i] * X[i][d];
         if (bc.type == BoundaryCondition::Pressure) {
-          for (int d = 0; d < 3; ++d) tr[d] = -P * n[d];
+          for (int d = 0; d < 3; ++d)
+            tr[d] = -P * n[d];
         } else {
           double s[3][3];
           exact_->stress(x, ctx.t_af, mu_, s);
-          for (int i = 0; i < 3; ++i) tr[i] = s[i][0] * n[0] + s[i][1] * n[1] + s[i][2] * n[2];
+          for (int i = 0; i < 3; ++i)
+            tr[i] = s[i][0] * n[0] + s[i][1] * n[1] + s[i][2] * n[2];
         }
         const double w = face_rule_.weight[q] * area2; // reference triangle measure 1/2
+        if (bc.beta > 0) { // backflow: traction += beta rho/2 min(v.n, 0) v
+          double v[3] = {0, 0, 0};
+          for (int a = 0; a < 6; ++a)
+            for (int d = 0; d < 3; ++d)
+              v[d] += N[a] * ctx.v_af(f.vdof[a] + d);
+          const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+          if (vn < 0)
+            for (int d = 0; d < 3; ++d)
+              tr[d] += 0.5 * bc.beta * rho_ * vn * v[d];
+        }
         for (int a = 0; a < 6; ++a)
-          for (int d = 0; d < 3; ++d) Fe[a][d] -= w * N[a] * tr[d];
+          for (int d = 0; d < 3; ++d)
+            Fe[a][d] -= w * N[a] * tr[d];
       }
       for (int a = 0; a < 6; ++a)
-        for (int d = 0; d < 3; ++d) F[f.vdof[a] + d] += Fe[a][d];
+        for (int d = 0; d < 3; ++d)
+          F[f.vdof[a] + d] += Fe[a][d];
+    }
+  }
+}
+
+} // namespace fsi
+
+namespace fsi {
+
+// Outward unit normal and |2 area| of a boundary face on configuration X.
+static double face_normal(const BoundaryFace &f, const double *X, double n[3]) {
+  double e1[3], e2[3];
+  for (int d = 0; d < 3; ++d) {
+    e1[d] = X[3 * f.vertex[1] + d] - X[3 * f.vertex[0] + d];
+    e2[d] = X[3 * f.vertex[2] + d] - X[3 * f.vertex[0] + d];
+  }
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  double out = 0;
+  for (int d = 0; d < 3; ++d)
+    out += n[d] * (X[3 * f.vertex[0] + d] - X[3 * f.opposite + d]);
+  const double J2 = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (int d = 0; d < 3; ++d)
+    n[d] = (out < 0 ? -n[d] : n[d]) / J2;
+  return J2;
+}
+
+void Boundaries::add_traction_jacobian(const StepContext &ctx, Mat J) const {
+  const std::vector<char> &mask = *ctx.is_dirichlet;
+  for (auto &bc : bcs_) {
+    if (bc.type != BoundaryCondition::Pressure || bc.beta <= 0) continue;
+    const double c = 0.5 * bc.beta * rho_ * ctx.stiff_shift();
+    for (auto &f : bc.faces) {
+      double n[3];
+      const double J2 = face_normal(f, ctx.X_af, n);
+      double K[18][18] = {};
+      bool any = false;
+      for (size_t q = 0; q < face_rule_.weight.size(); ++q) {
+        double N[6], v[3] = {0, 0, 0};
+        p2_tri(face_rule_.lambda[q].data(), N);
+        for (int a = 0; a < 6; ++a)
+          for (int d = 0; d < 3; ++d)
+            v[d] += N[a] * ctx.v_af(f.vdof[a] + d);
+        const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+        if (vn >= 0) continue;
+        any = true;
+        // d/dv [-(c) vn v_i] = -c (n_j v_i + vn delta_ij)
+        const double w = face_rule_.weight[q] * J2;
+        for (int a = 0; a < 6; ++a)
+          for (int b = 0; b < 6; ++b)
+            for (int i = 0; i < 3; ++i)
+              for (int j = 0; j < 3; ++j)
+                K[3 * a + i][3 * b + j] -=
+                    w * c * N[a] * N[b] * (n[j] * v[i] + (i == j ? vn : 0.0));
+      }
+      if (!any) continue;
+      PetscInt rows[18], cols[18];
+      for (int a = 0; a < 6; ++a)
+        for (int i = 0; i < 3; ++i) {
+          cols[3 * a + i] = f.vdof[a] + i;
+          rows[3 * a + i] = mask[f.vdof[a] + i] ? -1 : f.vdof[a] + i;
+        }
+      FSI_CALL(MatSetValuesLocal(J, 18, rows, 18, cols, &K[0][0], ADD_VALUES));
     }
   }
 }

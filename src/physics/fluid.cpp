@@ -32,7 +32,8 @@ FluidModule::FluidModule(const Space &space, const Mesh &mesh, const FluidParams
     : space_(space), p_(p) {
   mesh.require_groups({p.region}, "the fluid (-fluid_region)");
   cells_ = mesh.cells_in(p.region);
-  for (auto &c : cells_) c -= space.cStart;
+  for (auto &c : cells_)
+    c -= space.cStart;
   rule_ = tet_rule(p.quad_degree);
   for (auto &l : rule_.lambda) {
     std::array<double, 10> n;
@@ -86,30 +87,37 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
         for (int i = 0; i < 3; ++i) {
           v[i] += N[b] * e.v[b][i];
           a[i] += N[b] * e.a[b][i];
-          for (int j = 0; j < 3; ++j) G[i][j] += e.v[b][i] * dN[b][j];
+          for (int j = 0; j < 3; ++j)
+            G[i][j] += e.v[b][i] * dN[b][j];
           div1 += e.u1[b][i] * dN1[b][i];
         }
       for (int b = 0; b < 4; ++b) {
         p += l[b] * e.p[b];
-        for (int i = 0; i < 3; ++i) w[i] += l[b] * e.w[b][i];
+        for (int i = 0; i < 3; ++i)
+          w[i] += l[b] * e.w[b][i];
       }
       double f[3], tau[3][3];
       for (int i = 0; i < 3; ++i) {
         f[i] = rho * a[i];
         if (conv)
-          for (int j = 0; j < 3; ++j) f[i] += rho * G[i][j] * (v[j] - w[j]);
-        for (int j = 0; j < 3; ++j) tau[i][j] = mu * (G[i][j] + G[j][i]);
+          for (int j = 0; j < 3; ++j)
+            f[i] += rho * G[i][j] * (v[j] - w[j]);
+        for (int j = 0; j < 3; ++j)
+          tau[i][j] = mu * (G[i][j] + G[j][i]);
         tau[i][i] -= p;
       }
       for (int b = 0; b < 10; ++b)
         for (int i = 0; i < 3; ++i)
           Fv[b][i] += s * (N[b] * f[i] + tau[i][0] * dN[b][0] + tau[i][1] * dN[b][1] +
                            tau[i][2] * dN[b][2]);
-      for (int b = 0; b < 4; ++b) Fp[b] -= s1 * l[b] * div1;
+      for (int b = 0; b < 4; ++b)
+        Fp[b] -= s1 * l[b] * div1;
     }
     for (int b = 0; b < 10; ++b)
-      for (int i = 0; i < 3; ++i) F[e.vdof[b] + i] += Fv[b][i];
-    for (int b = 0; b < 4; ++b) F[e.pdof[b]] += Fp[b];
+      for (int i = 0; i < 3; ++i)
+        F[e.vdof[b] + i] += Fv[b][i];
+    for (int b = 0; b < 4; ++b)
+      F[e.pdof[b]] += Fp[b];
   }
 }
 
@@ -137,16 +145,19 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
         for (int b = 0; b < 10; ++b)
           for (int i = 0; i < 3; ++i) {
             c[i] += N[b] * e.v[b][i];
-            for (int j = 0; j < 3; ++j) G[i][j] += e.v[b][i] * dN[b][j];
+            for (int j = 0; j < 3; ++j)
+              G[i][j] += e.v[b][i] * dN[b][j];
           }
         for (int b = 0; b < 4; ++b)
-          for (int i = 0; i < 3; ++i) c[i] -= l[b] * e.w[b][i];
+          for (int i = 0; i < 3; ++i)
+            c[i] -= l[b] * e.w[b][i];
       }
       const double sm = s * rho * cm, sf = s * cf, smu = sf * mu, srho = sf * rho;
       for (int a = 0; a < 10; ++a) {
         for (int b = 0; b < 10; ++b) {
           const double NN = N[a] * N[b];
-          double diag = sm * NN + smu * (dN[a][0] * dN[b][0] + dN[a][1] * dN[b][1] + dN[a][2] * dN[b][2]);
+          double diag =
+              sm * NN + smu * (dN[a][0] * dN[b][0] + dN[a][1] * dN[b][1] + dN[a][2] * dN[b][2]);
           if (conv) diag += srho * N[a] * (c[0] * dN[b][0] + c[1] * dN[b][1] + c[2] * dN[b][2]);
           for (int i = 0; i < 3; ++i) {
             double *row = K[3 * a + i] + 3 * b;

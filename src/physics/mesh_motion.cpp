@@ -29,7 +29,8 @@ struct PrescribedBubble : MeshMotion {
         double xi = 2 * (space.X[3 * v + k] - lo[k]) / (hi[k] - lo[k]) - 1;
         b *= 1 - xi * xi;
       }
-      for (int k = 0; k < 3; ++k) d[3 * v + k] = A * (t / T) * b;
+      for (int k = 0; k < 3; ++k)
+        d[3 * v + k] = A * (t / T) * b;
     }
   }
 };

@@ -16,7 +16,8 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
   if (!surf_names_.empty() && !fluid)
     throw InputError("-monitor_surfaces needs a fluid in the scene");
   mesh.require_groups(surf_names_, "-monitor_surfaces");
-  for (auto &n : surf_names_) surf_faces_.push_back(space.boundary_faces(mesh, n));
+  for (auto &n : surf_names_)
+    surf_faces_.push_back(space.boundary_faces(mesh, n));
 
   std::string pts = opt::string("probe_points", "");
   std::stringstream ss(pts);
@@ -29,7 +30,8 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
     std::stringstream is(item);
     std::string c;
     int k = 0;
-    while (std::getline(is, c, ',') && k < 3) p.x[k++] = std::atof(c.c_str());
+    while (std::getline(is, c, ',') && k < 3)
+      p.x[k++] = std::atof(c.c_str());
     if (k != 3) throw InputError("-probe_points expects x,y,z;x,y,z;... got '" + item + "'");
     double best = -1e300;
     PetscInt best_cell = -1;
@@ -37,13 +39,15 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
     for (PetscInt cell : fluid ? fluid->cells() : std::vector<PetscInt>{}) {
       double X[4][3];
       for (int i = 0; i < 4; ++i)
-        for (int d = 0; d < 3; ++d) X[i][d] = space.X[3 * space.cell_vertex[4 * cell + i] + d];
+        for (int d = 0; d < 3; ++d)
+          X[i][d] = space.X[3 * space.cell_vertex[4 * cell + i] + d];
       TetGeometry g;
       g.set(X);
       double l[4], s = 0;
       for (int i = 1; i < 4; ++i) {
         l[i] = 0;
-        for (int d = 0; d < 3; ++d) l[i] += g.grad_lambda[i][d] * (p.x[d] - X[0][d]);
+        for (int d = 0; d < 3; ++d)
+          l[i] += g.grad_lambda[i][d] * (p.x[d] - X[0][d]);
         s += l[i];
       }
       l[0] = 1 - s;
@@ -51,7 +55,8 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
       if (mn > best) {
         best = mn;
         best_cell = cell;
-        for (int i = 0; i < 4; ++i) bl[i] = l[i];
+        for (int i = 0; i < 4; ++i)
+          bl[i] = l[i];
       }
     }
     int mine = best > -1e-8 ? rank : 1 << 30, owner;
@@ -60,7 +65,8 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
     p.owner = owner;
     if (owner == rank) {
       p.cell = best_cell;
-      for (int i = 0; i < 4; ++i) p.lambda[i] = bl[i];
+      for (int i = 0; i < 4; ++i)
+        p.lambda[i] = bl[i];
     }
     probes_.push_back(p);
   }
@@ -69,15 +75,19 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
 std::vector<std::string> Monitors::columns() const {
   std::vector<std::string> c;
   for (auto &n : surf_names_)
-    for (auto q : {"flux", "area", "fx", "fy", "fz", "p"}) c.push_back(n + "_" + q);
+    for (auto q : {"flux", "area", "fx", "fy", "fz", "p"})
+      c.push_back(n + "_" + q);
   for (size_t k = 0; k < probes_.size(); ++k) {
     const std::string p = "probe" + std::to_string(k) + "_";
-    for (auto q : {"vx", "vy", "vz", "p"}) c.push_back(p + q);
+    for (auto q : {"vx", "vy", "vz", "p"})
+      c.push_back(p + q);
     if (exact_)
-      for (auto q : {"vx_exact", "vy_exact", "vz_exact", "p_exact"}) c.push_back(p + q);
+      for (auto q : {"vx_exact", "vy_exact", "vz_exact", "p_exact"})
+        c.push_back(p + q);
   }
   if (exact_)
-    for (auto q : {"err_v_l2", "err_p_l2", "err_v_rel", "err_p_rel"}) c.push_back(q);
+    for (auto q : {"err_v_l2", "err_p_l2", "err_v_rel", "err_p_rel"})
+      c.push_back(q);
   return c;
 }
 
@@ -98,7 +108,8 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
     gp.set(XP);
     for (size_t q = 0; q < rule.weight.size(); ++q) {
       const double *l = rule.lambda[q].data();
-      double N[10], dN[10][3], x[3] = {0, 0, 0}, xp[3] = {0, 0, 0}, vh[3] = {0, 0, 0}, ph = 0, ve[3];
+      double N[10], dN[10][3], x[3] = {0, 0, 0}, xp[3] = {0, 0, 0}, vh[3] = {0, 0, 0}, ph = 0,
+                               ve[3];
       p2_tet(l, g.grad_lambda, N, dN);
       for (int i = 0; i < 4; ++i)
         for (int d = 0; d < 3; ++d) {
@@ -106,8 +117,10 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
           xp[d] += l[i] * XP[i][d];
         }
       for (int a = 0; a < 10; ++a)
-        for (int d = 0; d < 3; ++d) vh[d] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + d]);
-      for (int i = 0; i < 4; ++i) ph += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
+        for (int d = 0; d < 3; ++d)
+          vh[d] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + d]);
+      for (int i = 0; i < 4; ++i)
+        ph += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
       exact_->velocity(x, tv, ve);
       const double pe = exact_->pressure(xp, tp);
       const double w = rule.weight[q] * g.absdet, wp = rule.weight[q] * gp.absdet;
@@ -157,7 +170,8 @@ std::vector<double> Monitors::evaluate(const Problem &pb) {
       int pos[3] = {-1, -1, -1};
       for (int i = 0; i < 4; ++i) {
         const int v = space_->cell_vertex[4 * k + i];
-        for (int d = 0; d < 3; ++d) X[i][d] = Xc[3 * v + d];
+        for (int d = 0; d < 3; ++d)
+          X[i][d] = Xc[3 * v + d];
         for (int j = 0; j < 3; ++j)
           if (f.vertex[j] == v) pos[j] = i;
       }
@@ -173,29 +187,35 @@ std::vector<double> Monitors::evaluate(const Problem &pb) {
       nA[1] = e1[2] * e2[0] - e1[0] * e2[2];
       nA[2] = e1[0] * e2[1] - e1[1] * e2[0];
       double o = 0;
-      for (int d = 0; d < 3; ++d) o += nA[d] * (Xc[3 * f.vertex[0] + d] - Xo[d]);
+      for (int d = 0; d < 3; ++d)
+        o += nA[d] * (Xc[3 * f.vertex[0] + d] - Xo[d]);
       if (o < 0)
-        for (double &c : nA) c = -c;
+        for (double &c : nA)
+          c = -c;
       const double J2 = std::sqrt(nA[0] * nA[0] + nA[1] * nA[1] + nA[2] * nA[2]);
       double n[3] = {nA[0] / J2, nA[1] / J2, nA[2] / J2};
       for (size_t q = 0; q < frule.weight.size(); ++q) {
         double l[4] = {0, 0, 0, 0};
-        for (int j = 0; j < 3; ++j) l[pos[j]] = frule.lambda[q][j];
+        for (int j = 0; j < 3; ++j)
+          l[pos[j]] = frule.lambda[q][j];
         double N[10], dN[10][3], v[3] = {0, 0, 0}, G[3][3] = {}, p = 0;
         p2_tet(l, g.grad_lambda, N, dN);
         for (int a = 0; a < 10; ++a)
           for (int i = 0; i < 3; ++i) {
             const double ua = PetscRealPart(u[space_->cell_vdof[10 * k + a] + i]);
             v[i] += N[a] * ua;
-            for (int j = 0; j < 3; ++j) G[i][j] += ua * dN[a][j];
+            for (int j = 0; j < 3; ++j)
+              G[i][j] += ua * dN[a][j];
           }
-        for (int i = 0; i < 4; ++i) p += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
+        for (int i = 0; i < 4; ++i)
+          p += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
         const double w = frule.weight[q] * J2;
         s[0] += w * (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]);
         s[1] += w;
         for (int i = 0; i < 3; ++i) {
           double sn = -p * n[i];
-          for (int j = 0; j < 3; ++j) sn += mu * (G[i][j] + G[j][i]) * n[j];
+          for (int j = 0; j < 3; ++j)
+            sn += mu * (G[i][j] + G[j][i]) * n[j];
           s[2 + i] -= w * sn;
         }
         s[5] += w * p;
@@ -215,11 +235,13 @@ std::vector<double> Monitors::evaluate(const Problem &pb) {
       p2_tet(p.lambda, gl, N, dN);
       const PetscInt k = p.cell;
       for (int a = 0; a < 10; ++a)
-        for (int i = 0; i < 3; ++i) val[i] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + i]);
+        for (int i = 0; i < 3; ++i)
+          val[i] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + i]);
       double x[3] = {0, 0, 0};
       for (int i = 0; i < 4; ++i) {
         val[3] += p.lambda[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
-        for (int d = 0; d < 3; ++d) x[d] += p.lambda[i] * Xc[3 * space_->cell_vertex[4 * k + i] + d];
+        for (int d = 0; d < 3; ++d)
+          x[d] += p.lambda[i] * Xc[3 * space_->cell_vertex[4 * k + i] + d];
       }
       if (exact_) {
         exact_->velocity(x, t, val + 4);

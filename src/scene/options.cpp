@@ -12,7 +12,9 @@ void throw_petsc(PetscErrorCode ierr, const char *file, int line) {
 
 namespace opt {
 
-static std::string key(const std::string &name) { return "-" + name; }
+static std::string key(const std::string &name) {
+  return "-" + name;
+}
 
 bool has(const std::string &name) {
   PetscBool set = PETSC_FALSE;
@@ -51,8 +53,7 @@ double positive(const std::string &name, double def) {
 
 double nonnegative(const std::string &name, double def) {
   double v = real(name, def);
-  if (!(v >= 0))
-    throw InputError("option -" + name + " must be >= 0, got " + std::to_string(v));
+  if (!(v >= 0)) throw InputError("option -" + name + " must be >= 0, got " + std::to_string(v));
   return v;
 }
 
@@ -90,7 +91,8 @@ std::string required_string(const std::string &name) {
 
 std::string join(const std::vector<std::string> &v, const std::string &sep) {
   std::string out;
-  for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  for (size_t i = 0; i < v.size(); ++i)
+    out += (i ? sep : "") + v[i];
   return out;
 }
 
@@ -99,8 +101,8 @@ std::string choice(const std::string &name, const std::string &def,
   std::string s = string(name, def);
   for (auto &c : choices)
     if (c == s) return s;
-  throw InputError("option -" + name + " has unknown value '" + s + "'; use one of: " +
-                   join(choices));
+  throw InputError("option -" + name + " has unknown value '" + s +
+                   "'; use one of: " + join(choices));
 }
 
 std::vector<std::string> list(const std::string &name) {
@@ -116,7 +118,8 @@ std::vector<std::string> list(const std::string &name) {
 
 std::vector<double> reals(const std::string &name) {
   std::vector<double> out;
-  for (auto &s : list(name)) out.push_back(parse_real(name, s));
+  for (auto &s : list(name))
+    out.push_back(parse_real(name, s));
   return out;
 }
 

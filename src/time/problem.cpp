@@ -99,8 +99,10 @@ void Problem::create_matrix() {
   double zeros[34 * 34] = {};
   for (PetscInt k = 0; k < space_.n_cells(); ++k) {
     for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i) idx[3 * a + i] = space_.cell_vdof[10 * k + a] + i;
-    for (int b = 0; b < 4; ++b) idx[30 + b] = space_.cell_pdof[4 * k + b];
+      for (int i = 0; i < 3; ++i)
+        idx[3 * a + i] = space_.cell_vdof[10 * k + a] + i;
+    for (int b = 0; b < 4; ++b)
+      idx[30 + b] = space_.cell_pdof[4 * k + b];
     FSI_CALL(MatSetValuesLocal(pre, 34, idx, 34, idx, zeros, INSERT_VALUES));
   }
   for (PetscInt r = space_.rstart; r < space_.rstart + space_.n_owned; ++r)
@@ -144,8 +146,10 @@ void Problem::setup_solver() {
 }
 
 void Problem::mesh_at(double t, std::vector<double> &disp) const {
-  if (motion_) motion_->displacement(t, disp);
-  else disp.assign(3 * space_.n_vertices(), 0.0);
+  if (motion_)
+    motion_->displacement(t, disp);
+  else
+    disp.assign(3 * space_.n_vertices(), 0.0);
 }
 
 void Problem::solution_local(Vec &loc) const {
@@ -156,7 +160,8 @@ void Problem::initialize(const std::string &ic) {
   t_ = 0;
   n_ = 0;
   mesh_at(0.0, dn_);
-  for (size_t i = 0; i < Xn_.size(); ++i) Xn_[i] = space_.X[i] + dn_[i];
+  for (size_t i = 0; i < Xn_.size(); ++i)
+    Xn_[i] = space_.X[i] + dn_[i];
   FSI_CALL(VecZeroEntries(U_));
   FSI_CALL(VecZeroEntries(Vn_));
   FSI_CALL(VecZeroEntries(An_));
@@ -315,7 +320,8 @@ void Problem::residual(Vec U, Vec F) {
   ctx_.U = u;
   ctx_.Vn = v;
   ctx_.An = a;
-  for (auto &m : modules_) m->add_residual(ctx_, f);
+  for (auto &m : modules_)
+    m->add_residual(ctx_, f);
   bcs_->add_traction_residual(ctx_, f);
   FSI_CALL(VecRestoreArray(Floc_, &f));
   FSI_CALL(VecZeroEntries(F));
@@ -347,9 +353,13 @@ void Problem::jacobian(Vec U, Mat J) {
   ctx_.U = u;
   ctx_.Vn = v;
   ctx_.An = a;
-  for (auto &m : modules_) m->add_jacobian(ctx_, J);
+  for (auto &m : modules_)
+    m->add_jacobian(ctx_, J);
+  bcs_->add_traction_jacobian(ctx_, J);
   for (auto &[dof, val] : bc_values_)
-    if (space_.owned(dof)) FSI_CALL(MatSetValue(J, space_.local_to_global[dof], space_.local_to_global[dof], 1.0, ADD_VALUES));
+    if (space_.owned(dof))
+      FSI_CALL(MatSetValue(J, space_.local_to_global[dof], space_.local_to_global[dof], 1.0,
+                           ADD_VALUES));
   FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
   FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
   FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
