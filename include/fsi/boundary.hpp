@@ -6,7 +6,8 @@
 //                                -bc_<name>_direction x,y,z, parabolic: -bc_<name>_center, _radius
 //   pressure                     traction -P(t) n, P = -bc_<name>_value [Pa] * waveform(t), plus
 //                                backflow stabilisation -beta rho/2 min(v.n, 0) v
-//                                (-bc_<name>_backflow_beta, default 0.2; 0 turns it off): keeps
+//                                (-bc_<name>_backflow_beta, default 1: cancels the convective
+//                                energy influx exactly; 0 turns it off): keeps
 //                                the energy bounded when flow re-enters through the boundary
 //   traction_exact               traction sigma_exact n from -exact_solution (verification)
 // Waveforms: -bc_<name>_waveform constant|step|cosine|sine (+ _t_off, _period, _ramp).

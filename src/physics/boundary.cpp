@@ -52,7 +52,7 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
     if (type == "pressure") {
       bc.type = BoundaryCondition::Pressure;
       bc.value = opt::real(pre + "value", 0);
-      bc.beta = opt::nonnegative(pre + "backflow_beta", 0.2);
+      bc.beta = opt::nonnegative(pre + "backflow_beta", 1.0);
       bc.wave = Waveform::from_options(pre);
     }
     if (type == "traction_exact") {
