@@ -59,8 +59,8 @@ struct Space {
   // Velocity nodes (vertices and edges) in the closure of boundary `name`, consistent across
   // ranks: a node shared with a rank that lacks the face is listed there too.
   std::vector<DofNode> boundary_velocity_nodes(const Mesh &mesh, const std::string &name) const;
-  // Local pressure dof of the vertex with the smallest global pressure index, or -1 if this rank
-  // does not see it; `vertex` receives its local vertex index.
+  // Local pressure dof of the lexicographically smallest vertex (partition independent), or -1
+  // if this rank does not see it; `vertex` receives its local vertex index.
   PetscInt pinned_pressure_dof(int &vertex) const;
 };
 

@@ -372,24 +372,29 @@ std::vector<DofNode> Space::boundary_velocity_nodes(const Mesh &mesh,
 }
 
 PetscInt Space::pinned_pressure_dof(int &vertex) const {
+  // The lexicographically smallest vertex (x, then y, then z): a choice that does not depend on
+  // the partition, so 1 and 2 ranks solve the same discrete problem.
+  MPI_Comm comm = PetscObjectComm((PetscObject)dm);
+  double best[3];
+  for (int d = 0; d < 3; ++d) {
+    double mine = 1e300;
+    for (PetscInt v = 0; v < n_vertices(); ++v) {
+      bool ok = true;
+      for (int e = 0; e < d; ++e)
+        ok = ok && X[3 * v + e] == best[e];
+      if (ok) mine = std::min(mine, X[3 * v + d]);
+    }
+    MPI_Allreduce(&mine, &best[d], 1, MPI_DOUBLE, MPI_MIN, comm);
+  }
   PetscSection ls;
   FSI_CALL(DMGetLocalSection(dm, &ls));
-  PetscInt best = PETSC_MAX_INT;
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt off;
-    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &off));
-    best = std::min(best, local_to_global[off]);
-  }
-  PetscInt gbest;
-  MPI_Allreduce(&best, &gbest, 1, MPIU_INT, MPI_MIN, PetscObjectComm((PetscObject)dm));
-  for (PetscInt v = vStart; v < vEnd; ++v) {
-    PetscInt off;
-    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &off));
-    if (local_to_global[off] == gbest) {
-      vertex = (int)(v - vStart);
+  for (PetscInt v = 0; v < n_vertices(); ++v)
+    if (X[3 * v] == best[0] && X[3 * v + 1] == best[1] && X[3 * v + 2] == best[2]) {
+      PetscInt off;
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v + vStart, 1, &off));
+      vertex = (int)v;
       return off;
     }
-  }
   vertex = -1;
   return -1;
 }
