@@ -1,0 +1,247 @@
+#include "fsi/material.hpp"
+#include "fsi/common.hpp"
+#include "fsi/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+namespace {
+
+// Forward-mode dual number with N directional derivatives; T may itself be a Dual (2nd order).
+template <typename T, int N> struct Dual {
+  T v{};
+  T d[N]{};
+};
+template <typename T> T val(const T &x) {
+  return x;
+}
+template <typename T, int N> Dual<T, N> operator+(const Dual<T, N> &a, const Dual<T, N> &b) {
+  Dual<T, N> r;
+  r.v = a.v + b.v;
+  for (int i = 0; i < N; ++i)
+    r.d[i] = a.d[i] + b.d[i];
+  return r;
+}
+template <typename T, int N> Dual<T, N> operator-(const Dual<T, N> &a, const Dual<T, N> &b) {
+  Dual<T, N> r;
+  r.v = a.v - b.v;
+  for (int i = 0; i < N; ++i)
+    r.d[i] = a.d[i] - b.d[i];
+  return r;
+}
+template <typename T, int N> Dual<T, N> operator*(const Dual<T, N> &a, const Dual<T, N> &b) {
+  Dual<T, N> r;
+  r.v = a.v * b.v;
+  for (int i = 0; i < N; ++i)
+    r.d[i] = a.d[i] * b.v + a.v * b.d[i];
+  return r;
+}
+template <typename T, int N> Dual<T, N> operator*(double s, const Dual<T, N> &a) {
+  Dual<T, N> r;
+  r.v = s * a.v;
+  for (int i = 0; i < N; ++i)
+    r.d[i] = s * a.d[i];
+  return r;
+}
+template <typename T, int N> Dual<T, N> operator+(const Dual<T, N> &a, double s) {
+  Dual<T, N> r = a;
+  r.v = r.v + s;
+  return r;
+}
+// x^p for a real exponent
+inline double power(double x, double p) {
+  return std::pow(x, p);
+}
+template <typename T, int N> Dual<T, N> power(const Dual<T, N> &a, double p) {
+  Dual<T, N> r;
+  r.v = power(a.v, p);
+  const T f = p * power(a.v, p - 1);
+  for (int i = 0; i < N; ++i)
+    r.d[i] = f * a.d[i];
+  return r;
+}
+inline double value(double x) {
+  return x;
+}
+template <typename T, int N> double value(const Dual<T, N> &a) {
+  return value(a.v);
+}
+
+// Isochoric/volumetric Mooney-Rivlin energy (neo-Hookean when c01 = 0), generic in the scalar.
+template <typename S> S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa) {
+  // J = det F
+  S J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+        F[2] * (F[3] * F[7] - F[4] * F[6]);
+  if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
+  S C[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      C[3 * i + j] = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
+  S I1 = C[0] + C[4] + C[8];
+  S trC2 = C[0] * C[0];
+  for (int k = 1; k < 9; ++k)
+    trC2 = trC2 + C[k] * C[k]; // C symmetric: tr(C^2) = C:C
+  S I2 = 0.5 * (I1 * I1 - trC2);
+  S I1b = power(J, -2.0 / 3.0) * I1, I2b = power(J, -4.0 / 3.0) * I2;
+  S Jm1 = J + (-1.0);
+  return c10 * (I1b + (-3.0)) + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1);
+}
+
+struct SplitLaw : Material {
+  std::string kind;
+  double c10, c01, kappa;
+  SplitLaw(std::string k, double a, double b, double c)
+      : kind(std::move(k)), c10(a), c01(b), kappa(c) {}
+  std::string name() const override { return kind; }
+  double energy(const double F[3][3]) const override {
+    return mooney_rivlin_energy(&F[0][0], c10, c01, kappa);
+  }
+  void stress(const double F[3][3], double P[3][3]) const override {
+    using D = Dual<double, 9>;
+    D f[9];
+    for (int m = 0; m < 9; ++m)
+      f[m].v = (&F[0][0])[m], f[m].d[m] = 1;
+    D W = mooney_rivlin_energy(f, c10, c01, kappa);
+    for (int m = 0; m < 9; ++m)
+      (&P[0][0])[m] = W.d[m];
+  }
+  void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const override {
+    using D1 = Dual<double, 9>;
+    using D2 = Dual<D1, 1>;
+    for (int k = 0; k < 9; ++k) { // one pass per column of the Hessian
+      D2 f[9];
+      for (int m = 0; m < 9; ++m) {
+        f[m].v.v = (&F[0][0])[m];
+        f[m].v.d[m] = 1;
+        f[m].d[0].v = m == k ? 1 : 0;
+      }
+      D2 W = mooney_rivlin_energy(f, c10, c01, kappa);
+      for (int m = 0; m < 9; ++m)
+        (&A[0][0][0][0])[9 * m + k] = W.d[0].d[m];
+      if (k == 0)
+        for (int m = 0; m < 9; ++m)
+          (&P[0][0])[m] = W.v.d[m];
+    }
+  }
+};
+
+struct StVenantKirchhoff : Material {
+  double lambda, mu;
+  bool small_strain;
+  StVenantKirchhoff(double l, double m, bool lin) : lambda(l), mu(m), small_strain(lin) {}
+  std::string name() const override { return small_strain ? "linear" : "svk"; }
+  // Strain: E = (F^T F - I)/2 (svk) or eps = sym(F - I) (linear).
+  void strain(const double F[3][3], double E[3][3]) const {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        if (small_strain)
+          E[i][j] = 0.5 * (F[i][j] + F[j][i]) - (i == j);
+        else {
+          double c = 0;
+          for (int k = 0; k < 3; ++k)
+            c += F[k][i] * F[k][j];
+          E[i][j] = 0.5 * (c - (i == j));
+        }
+      }
+  }
+  void second_pk(const double E[3][3], double S[3][3]) const {
+    const double tr = E[0][0] + E[1][1] + E[2][2];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        S[i][j] = 2 * mu * E[i][j] + (i == j ? lambda * tr : 0.0);
+  }
+  double energy(const double F[3][3]) const override {
+    double E[3][3], S[3][3], w = 0;
+    strain(F, E);
+    second_pk(E, S);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        w += 0.5 * S[i][j] * E[i][j];
+    return w;
+  }
+  void stress(const double F[3][3], double P[3][3]) const override {
+    double E[3][3], S[3][3];
+    strain(F, E);
+    second_pk(E, S);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        if (small_strain)
+          P[i][j] = S[i][j];
+        else
+          P[i][j] = F[i][0] * S[0][j] + F[i][1] * S[1][j] + F[i][2] * S[2][j];
+      }
+  }
+  void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const override {
+    stress(F, P);
+    double E[3][3], S[3][3];
+    strain(F, E);
+    second_pk(E, S);
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J)
+        for (int k = 0; k < 3; ++k)
+          for (int L = 0; L < 3; ++L) {
+            if (small_strain) {
+              A[i][J][k][L] =
+                  lambda * (i == J) * (k == L) + mu * ((i == k) * (J == L) + (i == L) * (J == k));
+            } else {
+              double FF = 0; // F_iM F_kM
+              for (int m = 0; m < 3; ++m)
+                FF += F[i][m] * F[k][m];
+              A[i][J][k][L] = (i == k) * S[L][J] + lambda * F[i][J] * F[k][L] +
+                              mu * (F[i][L] * F[k][J] + FF * (J == L));
+            }
+          }
+  }
+};
+
+void check_modulus(const std::string &name, double v) {
+  if (!(v > 0))
+    throw InputError("option -solid_" + name + " must be positive, got " + std::to_string(v));
+}
+
+} // namespace
+
+std::unique_ptr<Material> make_material(const std::string &kind, double p1, double p2, double p3) {
+  if (kind == "linear" || kind == "svk") { // p1 = E, p2 = nu
+    check_modulus("E", p1);
+    if (!(p2 > -1 && p2 < 0.5))
+      throw InputError(
+          "option -solid_nu must satisfy -1 < nu < 0.5, got " + std::to_string(p2) +
+          " (use mooney_rivlin or neo_hookean with a bulk modulus for incompressibility)");
+    const double lambda = p1 * p2 / ((1 + p2) * (1 - 2 * p2)), mu = p1 / (2 * (1 + p2));
+    return std::make_unique<StVenantKirchhoff>(lambda, mu, kind == "linear");
+  }
+  if (kind == "neo_hookean") { // p1 = mu, p2 = kappa
+    check_modulus("mu", p1);
+    check_modulus("kappa", p2);
+    return std::make_unique<SplitLaw>(kind, 0.5 * p1, 0.0, p2);
+  }
+  if (kind == "mooney_rivlin") { // p1 = C10, p2 = C01, p3 = kappa
+    check_modulus("C10", p1);
+    if (!(p2 >= 0)) throw InputError("option -solid_C01 must be >= 0");
+    check_modulus("kappa", p3);
+    return std::make_unique<SplitLaw>(kind, p1, p2, p3);
+  }
+  throw InputError("option -solid_material has unknown value '" + kind +
+                   "'; use one of: linear, svk, neo_hookean, mooney_rivlin");
+}
+
+std::unique_ptr<Material> make_material() {
+  const std::string kind =
+      opt::choice("solid_material", "linear", {"linear", "svk", "neo_hookean", "mooney_rivlin"});
+  if (kind == "linear" || kind == "svk")
+    return make_material(kind, opt::required_positive("solid_E"), opt::real("solid_nu", 0.3));
+  if (kind == "neo_hookean") {
+    if (opt::has("solid_E")) { // convert E, nu to mu, kappa
+      const double E = opt::positive("solid_E", 1), nu = opt::real("solid_nu", 0.3);
+      if (!(nu > -1 && nu < 0.5)) throw InputError("option -solid_nu must satisfy -1 < nu < 0.5");
+      return make_material(kind, E / (2 * (1 + nu)), E / (3 * (1 - 2 * nu)));
+    }
+    return make_material(kind, opt::required_positive("solid_mu"),
+                         opt::required_positive("solid_kappa"));
+  }
+  return make_material(kind, opt::required_positive("solid_C10"), opt::nonnegative("solid_C01", 0),
+                       opt::required_positive("solid_kappa"));
+}
+
+} // namespace fsi

@@ -1,0 +1,116 @@
+// Constitutive laws: P against finite differences of W, the tangent against finite differences
+// of P (relative error < 1e-6, issue: hyperelastic solid), inverted elements and bad parameters.
+#include "fsi/common.hpp"
+#include "fsi/material.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+using namespace fsi;
+
+static int failures = 0;
+static void check(bool ok, const char *what, double v) {
+  std::printf("%s: %s (%.2e)\n", ok ? "PASS" : "FAIL", what, v);
+  if (!ok) ++failures;
+}
+
+int main() {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.25, 0.25);
+  double F[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      F[i][j] = (i == j ? 1.0 + 0.3 * (i - 1) : 0.0) + u(rng);
+  struct Case {
+    const char *kind;
+    double p1, p2, p3;
+  };
+  const Case cases[] = {{"linear", 3e5, 0.3, 0},
+                        {"svk", 3e5, 0.3, 0},
+                        {"neo_hookean", 1e5, 1e7, 0},
+                        {"mooney_rivlin", 8.25e3, 0.5e3, 8.75e6}};
+  for (const Case &c : cases) {
+    auto m = make_material(c.kind, c.p1, c.p2, c.p3);
+    double P[3][3], Pt[3][3], A[3][3][3][3];
+    m->stress(F, P);
+    m->tangent(F, Pt, A);
+    double eP = 0, nP = 0, eA = 0, nA = 0, eC = 0;
+    for (int k = 0; k < 3; ++k)
+      for (int L = 0; L < 3; ++L) {
+        const double h = 1e-6;
+        double Fp[3][3], Fm[3][3], Pp[3][3], Pm[3][3];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            Fp[i][j] = Fm[i][j] = F[i][j];
+        Fp[k][L] += h;
+        Fm[k][L] -= h;
+        const double dW = (m->energy(Fp) - m->energy(Fm)) / (2 * h);
+        eP += std::pow(dW - P[k][L], 2);
+        nP += P[k][L] * P[k][L];
+        eC += std::pow(Pt[k][L] - P[k][L], 2);
+        m->stress(Fp, Pp);
+        m->stress(Fm, Pm);
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J) {
+            const double fd = (Pp[i][J] - Pm[i][J]) / (2 * h);
+            eA += std::pow(fd - A[i][J][k][L], 2);
+            nA += A[i][J][k][L] * A[i][J][k][L];
+          }
+      }
+    char msg[128];
+    std::snprintf(msg, sizeof msg, "%s: P = dW/dF (relative error)", c.kind);
+    check(std::sqrt(eP / nP) < 1e-6, msg, std::sqrt(eP / nP));
+    std::snprintf(msg, sizeof msg, "%s: tangent = dP/dF (relative error)", c.kind);
+    check(std::sqrt(eA / nA) < 1e-6, msg, std::sqrt(eA / nA));
+    std::snprintf(msg, sizeof msg, "%s: tangent call returns the same P", c.kind);
+    check(std::sqrt(eC / nP) < 1e-14, msg, std::sqrt(eC / nP));
+    // Stress-free reference state.
+    double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P0[3][3], n0 = 0;
+    m->stress(I, P0);
+    for (auto &r : P0)
+      n0 += r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    std::snprintf(msg, sizeof msg, "%s: P(I) = 0", c.kind);
+    check(std::sqrt(n0) < 1e-9 * c.p1, msg, std::sqrt(n0));
+  }
+  // Mooney-Rivlin uniaxial tension at a material point (kappa/mu = 1000): free lateral stretch
+  // (P22 = P33 = 0 by bisection) against the incompressible closed form of benchmarks.md s.2,
+  // nominal stress P = 2 (l - l^-2)(C10 + C01 / l), stretches 1.0 .. 1.5.
+  {
+    const double C10 = 8.25e3, C01 = 0.5e3, kappa = 1000 * 2 * (C10 + C01);
+    auto m = make_material("mooney_rivlin", C10, C01, kappa);
+    double worst = 0;
+    for (double l = 1.05; l <= 1.5001; l += 0.05) {
+      double lo = 0.5, hi = 1.0, Pl[3][3];
+      for (int it = 0; it < 100; ++it) { // P22 increases with the lateral stretch
+        const double t = 0.5 * (lo + hi);
+        double Fu[3][3] = {{l, 0, 0}, {0, t, 0}, {0, 0, t}};
+        m->stress(Fu, Pl);
+        (Pl[1][1] > 0 ? hi : lo) = t;
+      }
+      const double exact = 2 * (l - 1 / (l * l)) * (C10 + C01 / l);
+      worst = std::max(worst, std::fabs(Pl[0][0] / exact - 1));
+    }
+    check(worst < 0.005, "mooney_rivlin: uniaxial nominal stress within 0.5% of closed form",
+          worst);
+  }
+  // An inverted element is an error, not a NaN.
+  double Finv[3][3] = {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P[3][3];
+  bool threw = false;
+  try {
+    make_material("mooney_rivlin", 8e3, 5e2, 1e7)->stress(Finv, P);
+  } catch (SolveError &) {
+    threw = true;
+  }
+  check(threw, "mooney_rivlin: det F < 0 raises SolveError", 0);
+  threw = false;
+  try {
+    make_material("svk", 3e5, 0.5);
+  } catch (InputError &) {
+    threw = true;
+  }
+  check(threw, "svk: nu = 0.5 rejected", 0);
+  std::printf("%d failed\n", failures);
+  return failures ? 1 : 0;
+}
