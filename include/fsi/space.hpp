@@ -20,6 +20,10 @@ struct BoundaryFace {
   PetscInt pdof[3]; // local pressure dofs of the face vertices
 };
 
+// Outward unit normal n of a boundary face on vertex coordinates X (3 per local vertex), oriented
+// away from the cell's opposite vertex; returns |cross product| = 2 * area.
+double outward_normal(const BoundaryFace &f, const double *X, double n[3]);
+
 struct DofNode {
   PetscInt dof; // first local dof (velocity: x component; pressure: the dof)
   int va, vb;   // local vertex indices; vb = -1 for a vertex node, else edge midpoint

@@ -6,6 +6,24 @@
 
 namespace fsi {
 
+double outward_normal(const BoundaryFace &f, const double *X, double n[3]) {
+  double e1[3], e2[3];
+  for (int d = 0; d < 3; ++d) {
+    e1[d] = X[3 * f.vertex[1] + d] - X[3 * f.vertex[0] + d];
+    e2[d] = X[3 * f.vertex[2] + d] - X[3 * f.vertex[0] + d];
+  }
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  double out = 0;
+  for (int d = 0; d < 3; ++d)
+    out += n[d] * (X[3 * f.vertex[0] + d] - X[3 * f.opposite + d]);
+  const double J2 = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (int d = 0; d < 3; ++d)
+    n[d] = (out < 0 ? -n[d] : n[d]) / J2;
+  return J2;
+}
+
 // Every local dof must map to the global dof of the same node: write each node's position into
 // its owned global entry, scatter back, compare.  Cheap, and it catches any numbering mistake.
 void Space::check_numbering() const {

@@ -130,29 +130,11 @@ void Boundaries::add_traction_residual(const StepContext &ctx, PetscScalar *F) c
       continue;
     const double P = bc.type == BoundaryCondition::Pressure ? bc.value * bc.wave(ctx.t_af) : 0.0;
     for (auto &f : bc.faces) {
-      double X[3][3], Xo[3];
+      double X[3][3], n[3];
       for (int i = 0; i < 3; ++i)
         for (int d = 0; d < 3; ++d)
           X[i][d] = ctx.X_af[3 * f.vertex[i] + d];
-      for (int d = 0; d < 3; ++d)
-        Xo[d] = ctx.X_af[3 * f.opposite + d];
-      double e1[3], e2[3], nA[3];
-      for (int d = 0; d < 3; ++d)
-        e1[d] = X[1][d] - X[0][d], e2[d] = X[2][d] - X[0][d];
-      nA[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      nA[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      nA[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      // Orient outward: away from the cell's opposite vertex.
-      double out = 0;
-      for (int d = 0; d < 3; ++d)
-        out += nA[d] * (X[0][d] - Xo[d]);
-      if (out < 0)
-        for (double &c : nA)
-          c = -c;
-      const double area2 = std::sqrt(nA[0] * nA[0] + nA[1] * nA[1] + nA[2] * nA[2]); // 2 * area
-      double n[3];
-      for (int d = 0; d < 3; ++d)
-        n[d] = nA[d] / area2;
+      const double area2 = outward_normal(f, ctx.X_af, n); // 2 * area
       double Fe[6][3] = {};
       for (size_t q = 0; q < face_rule_.weight.size(); ++q) {
         const double *l = face_rule_.lambda[q].data();
@@ -192,29 +174,6 @@ void Boundaries::add_traction_residual(const StepContext &ctx, PetscScalar *F) c
   }
 }
 
-} // namespace fsi
-
-namespace fsi {
-
-// Outward unit normal and |2 area| of a boundary face on configuration X.
-static double face_normal(const BoundaryFace &f, const double *X, double n[3]) {
-  double e1[3], e2[3];
-  for (int d = 0; d < 3; ++d) {
-    e1[d] = X[3 * f.vertex[1] + d] - X[3 * f.vertex[0] + d];
-    e2[d] = X[3 * f.vertex[2] + d] - X[3 * f.vertex[0] + d];
-  }
-  n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-  n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-  double out = 0;
-  for (int d = 0; d < 3; ++d)
-    out += n[d] * (X[3 * f.vertex[0] + d] - X[3 * f.opposite + d]);
-  const double J2 = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  for (int d = 0; d < 3; ++d)
-    n[d] = (out < 0 ? -n[d] : n[d]) / J2;
-  return J2;
-}
-
 void Boundaries::add_traction_jacobian(const StepContext &ctx, Mat J) const {
   const std::vector<char> &mask = *ctx.is_dirichlet;
   for (auto &bc : bcs_) {
@@ -222,7 +181,7 @@ void Boundaries::add_traction_jacobian(const StepContext &ctx, Mat J) const {
     const double c = 0.5 * bc.beta * rho_ * ctx.stiff_shift();
     for (auto &f : bc.faces) {
       double n[3];
-      const double J2 = face_normal(f, ctx.X_af, n);
+      const double J2 = outward_normal(f, ctx.X_af, n);
       double K[18][18] = {};
       bool any = false;
       for (size_t q = 0; q < face_rule_.weight.size(); ++q) {

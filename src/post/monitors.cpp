@@ -177,23 +177,8 @@ std::vector<double> Monitors::evaluate(const Problem &pb) {
       }
       TetGeometry g;
       g.set(X);
-      double e1[3], e2[3], nA[3], Xo[3];
-      for (int d = 0; d < 3; ++d) {
-        e1[d] = Xc[3 * f.vertex[1] + d] - Xc[3 * f.vertex[0] + d];
-        e2[d] = Xc[3 * f.vertex[2] + d] - Xc[3 * f.vertex[0] + d];
-        Xo[d] = Xc[3 * f.opposite + d];
-      }
-      nA[0] = e1[1] * e2[2] - e1[2] * e2[1];
-      nA[1] = e1[2] * e2[0] - e1[0] * e2[2];
-      nA[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      double o = 0;
-      for (int d = 0; d < 3; ++d)
-        o += nA[d] * (Xc[3 * f.vertex[0] + d] - Xo[d]);
-      if (o < 0)
-        for (double &c : nA)
-          c = -c;
-      const double J2 = std::sqrt(nA[0] * nA[0] + nA[1] * nA[1] + nA[2] * nA[2]);
-      double n[3] = {nA[0] / J2, nA[1] / J2, nA[2] / J2};
+      double n[3];
+      const double J2 = outward_normal(f, Xc.data(), n);
       for (size_t q = 0; q < frule.weight.size(); ++q) {
         double l[4] = {0, 0, 0, 0};
         for (int j = 0; j < 3; ++j)
