@@ -20,6 +20,7 @@ public:
 
 private:
   Vec vertex_vec(int bs) const;
+  void write_and_destroy(const char *group, const std::string &name, Vec &v);
   const Space &space_;
   std::string dir_;
   PetscViewer h5_ = nullptr;

@@ -49,11 +49,7 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(sp
     for (int i = 0; i < 4; ++i)
       ca[4 * k + i] = vid[space.cell_vertex[4 * k + i]];
   FSI_CALL(VecRestoreArray(cells, &ca));
-  FSI_CALL(PetscObjectSetName((PetscObject)cells, "cells"));
-  FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/topology"));
-  FSI_CALL(VecView(cells, h5_));
-  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
-  FSI_CALL(VecDestroy(&cells));
+  write_and_destroy("/topology", "cells", cells);
   Vec xv = vertex_vec(3);
   PetscScalar *xa;
   FSI_CALL(VecGetArray(xv, &xa));
@@ -61,15 +57,19 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(sp
     for (int d = 0; d < 3; ++d)
       xa[3 * i + d] = space.X[3 * owned_vertices_[i] + d];
   FSI_CALL(VecRestoreArray(xv, &xa));
-  FSI_CALL(PetscObjectSetName((PetscObject)xv, "vertices"));
-  FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/geometry"));
-  FSI_CALL(VecView(xv, h5_));
-  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
-  FSI_CALL(VecDestroy(&xv));
+  write_and_destroy("/geometry", "vertices", xv);
 }
 
 FieldWriter::~FieldWriter() {
   if (h5_) PetscViewerDestroy(&h5_);
+}
+
+void FieldWriter::write_and_destroy(const char *group, const std::string &name, Vec &v) {
+  FSI_CALL(PetscObjectSetName((PetscObject)v, name.c_str()));
+  FSI_CALL(PetscViewerHDF5PushGroup(h5_, group));
+  FSI_CALL(VecView(v, h5_));
+  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
+  FSI_CALL(VecDestroy(&v));
 }
 
 Vec FieldWriter::vertex_vec(int bs) const {
@@ -107,15 +107,9 @@ void FieldWriter::write(long step, double t, Vec U_local, const std::vector<doub
   FSI_CALL(VecRestoreArrayRead(U_local, &u));
   char tag[32];
   std::snprintf(tag, sizeof tag, "_%06ld", step);
-  FSI_CALL(PetscViewerHDF5PushGroup(h5_, "/fields"));
-  for (auto [vec, name] : {std::pair<Vec, const char *>{vel, "velocity"},
-                           {p, "pressure"},
-                           {disp, "mesh_displacement"}}) {
-    FSI_CALL(PetscObjectSetName((PetscObject)vec, (std::string(name) + tag).c_str()));
-    FSI_CALL(VecView(vec, h5_));
-    FSI_CALL(VecDestroy(&vec));
-  }
-  FSI_CALL(PetscViewerHDF5PopGroup(h5_));
+  write_and_destroy("/fields", std::string("velocity") + tag, vel);
+  write_and_destroy("/fields", std::string("pressure") + tag, p);
+  write_and_destroy("/fields", std::string("mesh_displacement") + tag, disp);
   steps_.emplace_back(step, t);
 }
 
