@@ -6,8 +6,10 @@
 // velocity is divergence-free on its own configuration), exact Newton Jacobian.  Options (prefix
 // -fluid_):
 //   region NAME (physical volume, default "fluid"), rho [kg/m^3], mu [Pa s],
-//   model navier_stokes|stokes (stokes skips convection), quad_degree (default 4).
+//   model navier_stokes|stokes (stokes skips convection), quad_degree (default 4),
+//   direct_insertion (default true; false = MatSetValuesLocal, for checking).
 #pragma once
+#include "fsi/element_assembler.hpp"
 #include "fsi/mesh.hpp"
 #include "fsi/p2tet.hpp"
 #include "fsi/physics_module.hpp"
@@ -20,6 +22,7 @@ struct FluidParams {
   double rho = 1000, mu = 0.003;
   bool stokes = false;
   int quad_degree = 4;
+  bool direct_insertion = true; // element matrices straight into the AIJ arrays
   static FluidParams from_options();
 };
 
@@ -43,7 +46,8 @@ private:
   std::vector<PetscInt> cells_; // local cell indices (0-based)
   QuadRule rule_;
   std::vector<std::array<double, 10>> N_; // P2 values per quadrature point
-  std::vector<unsigned char> perm_;       // per cell: dof order sorted by global index
+  std::vector<PetscInt> dofs_;            // per cell: 34 local dofs in element order
+  ElementAssembler assembler_;
 };
 
 } // namespace fsi
