@@ -18,4 +18,17 @@ print(f"flux {m['outlet_flux']:.6e} (exact {Q:.6e}, {100*q_err:+.3f}%), wall she
 check(abs(q_err) < 0.01, f"flux within 1% ({100*q_err:+.3f}%)")
 check(abs(tau_err) < 0.01, f"wall shear within 1% ({100*tau_err:+.3f}%)")
 check(abs(mass) < 1e-10, f"inflow equals outflow (relative imbalance {mass:.1e})")
+
+# The same flow driven by the user-facing pressure boundaries (0.1 Pa over 10 mm) with the
+# tangential velocity fixed on inlet and outlet (parallel-flow boundaries, -bc_*_components x,y).
+r = run(scene("poiseuille"), np=np, extra=[
+    "-bc_inlet_type", "pressure", "-bc_inlet_value", "0.1", "-bc_inlet_components", "x,y",
+    "-bc_inlet_backflow_beta", "0", "-bc_outlet_type", "pressure", "-bc_outlet_value", "0",
+    "-bc_outlet_components", "x,y"])
+check(r.code == 0, "pressure-driven run succeeds")
+m = r.monitor[-1]
+q_err, tau_err = m["outlet_flux"] / Q - 1, (m["wall_fz"] / m["wall_area"]) / tw - 1
+print(f"pressure-driven: flux {100*q_err:+.3f}%, wall shear {100*tau_err:+.3f}%")
+check(abs(q_err) < 0.01, f"pressure-driven flux within 1% ({100*q_err:+.3f}%)")
+check(abs(tau_err) < 0.01, f"pressure-driven wall shear within 1% ({100*tau_err:+.3f}%)")
 finish()

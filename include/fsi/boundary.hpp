@@ -7,10 +7,14 @@
 //   pressure                     traction -P(t) n, P = -bc_<name>_value [Pa] * waveform(t), plus
 //                                backflow stabilisation -beta rho/2 min(v.n, 0) v
 //                                (-bc_<name>_backflow_beta, default 1: cancels the convective
-//                                energy influx exactly; 0 turns it off): keeps
+//                                energy influx exactly; 0 turns it off, as a pressure-driven
+//                                inlet needs): keeps
 //                                the energy bounded when flow re-enters through the boundary
 //   traction_exact               traction sigma_exact n from -exact_solution (verification)
 // Waveforms: -bc_<name>_waveform constant|step|cosine|sine (+ _t_off, _period, _ramp).
+// -bc_<name>_components x,y: the velocity components the boundary fixes.  Default: all for
+// noslip/velocity, none for pressure/traction; on a pressure boundary, fixing the tangential
+// components (e.g. x,y on a z-facing outlet) gives a parallel-flow outlet.
 // Boundaries not listed are traction-free.  Dirichlet data are imposed at t_{n+1} on the nodes'
 // current positions; tractions enter the momentum residual at t_{n+alpha_f}.
 #pragma once
@@ -28,8 +32,9 @@ struct BoundaryCondition {
   std::string name, profile = "uniform";
   double value = 0, dir[3] = {0, 0, 1}, center[3] = {0, 0, 0}, radius = 1, beta = 0;
   Waveform wave;
-  std::vector<DofNode> nodes;      // Dirichlet types
-  std::vector<BoundaryFace> faces; // traction types
+  bool fixed[3] = {false, false, false}; // velocity components fixed on this boundary
+  std::vector<DofNode> nodes;            // Dirichlet types
+  std::vector<BoundaryFace> faces;       // traction types
 };
 
 class Boundaries {

@@ -59,12 +59,23 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
       if (!exact) throw InputError("-" + pre + "type traction_exact needs -exact_solution");
       bc.type = BoundaryCondition::TractionExact;
     }
-    if (bc.type == BoundaryCondition::NoSlip || bc.type == BoundaryCondition::Velocity) {
+    const bool dirichlet =
+        bc.type == BoundaryCondition::NoSlip || bc.type == BoundaryCondition::Velocity;
+    const auto comps = opt::list(pre + "components");
+    for (int i = 0; i < 3; ++i)
+      bc.fixed[i] = dirichlet && comps.empty();
+    for (auto &c : comps) {
+      if (c != "x" && c != "y" && c != "z")
+        throw InputError("option -" + pre + "components takes x, y, z; got '" + c + "'");
+      bc.fixed[c[0] - 'x'] = true;
+    }
+    if (bc.fixed[0] || bc.fixed[1] || bc.fixed[2]) {
       bc.nodes = space.boundary_velocity_nodes(mesh, n);
       for (auto &nd : bc.nodes)
         for (int i = 0; i < 3; ++i)
-          mask_[nd.dof + i] = 1;
-    } else {
+          if (bc.fixed[i]) mask_[nd.dof + i] = 1;
+    }
+    if (!dirichlet) {
       bc.faces = space.boundary_faces(mesh, n);
       level_fixed = true;
     }
@@ -82,7 +93,7 @@ void Boundaries::dirichlet_values(double t, const double *X,
                                   std::vector<std::pair<PetscInt, double>> &out) const {
   out.clear();
   for (auto &bc : bcs_) {
-    if (bc.type != BoundaryCondition::NoSlip && bc.type != BoundaryCondition::Velocity) continue;
+    if (bc.nodes.empty()) continue;
     const double scale = bc.type == BoundaryCondition::Velocity ? bc.wave(t) : 0.0;
     for (auto &nd : bc.nodes) {
       double x[3], v[3] = {0, 0, 0};
@@ -106,7 +117,7 @@ void Boundaries::dirichlet_values(double t, const double *X,
         }
       }
       for (int d = 0; d < 3; ++d)
-        out.emplace_back(nd.dof + d, v[d]);
+        if (bc.fixed[d]) out.emplace_back(nd.dof + d, v[d]);
     }
   }
   if (pin_dof_ >= 0) {
