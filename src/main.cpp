@@ -98,7 +98,7 @@ int run(MPI_Comm comm) {
 
   // Physics modules switched on by the scene.
   const TimeParams tp = TimeParams::from_options();
-  Problem pb(mesh, space, tp);
+  Problem pb(space, tp);
   FluidModule *fluid = nullptr;
   std::unique_ptr<ExactFlow> exact;
   if (want_fluid) {

@@ -36,7 +36,7 @@ struct CostCounters {
 
 class Problem {
 public:
-  Problem(const Mesh &mesh, const Space &space, const TimeParams &tp);
+  Problem(const Space &space, const TimeParams &tp);
   ~Problem();
   void add_module(std::unique_ptr<PhysicsModule> m) { modules_.push_back(std::move(m)); }
   void set_boundaries(Boundaries *b) { bcs_ = b; }
@@ -72,7 +72,6 @@ private:
   void create_matrix();
   void mesh_at(double t, std::vector<double> &disp) const;
   void set_context(double t_np1);
-  const Mesh &mesh_;
   const Space &space_;
   TimeParams tp_;
   double alpha_m_ = 1, alpha_f_ = 1, gamma_ = 1;

@@ -106,12 +106,9 @@ void Output::write_options() const {
   FSI_CALL(PetscOptionsGetAll(nullptr, &all));
   std::string s(all ? all : "");
   FSI_CALL(PetscFree(all));
-  std::string o;
-  for (char c : s)
-    o += c;
-  // one option per line
+  // one option (with its values) per line
   std::string lines;
-  std::stringstream ss(o);
+  std::stringstream ss(s);
   std::string tok, cur;
   while (ss >> tok) {
     if (tok[0] == '-' && !cur.empty() &&

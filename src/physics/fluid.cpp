@@ -22,6 +22,7 @@ FluidParams FluidParams::from_options() {
 struct FluidModule::Element {
   TetGeometry geo;  // at t_{n+alpha_f}
   TetGeometry geo1; // at t_{n+1}
+  bool moving;      // geo1 differs from geo
   double v[10][3];  // velocity at n+af
   double a[10][3];  // acceleration at n+am
   double u1[10][3]; // velocity at n+1 (continuity)
@@ -68,7 +69,11 @@ void FluidModule::gather(const StepContext &ctx, PetscInt k, Element &e) const {
     e.p[i] = PetscRealPart(ctx.U[e.pdof[i]]);
   }
   e.geo.set(X);
-  e.geo1.set(X1);
+  e.moving = ctx.X_np1 != ctx.X_af;
+  if (e.moving)
+    e.geo1.set(X1);
+  else
+    e.geo1 = e.geo;
   for (int a = 0; a < 10; ++a) {
     const PetscInt o = space_.cell_vdof[10 * k + a];
     e.vdof[a] = o;
@@ -92,7 +97,8 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
       const double *N = N_[q].data();
       double dN[10][3], dN1[10][3], Nd[10];
       p2_tet(l, e.geo.grad_lambda, Nd, dN);
-      p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
+      if (e.moving) p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
+      const double(&dNc)[10][3] = e.moving ? dN1 : dN; // continuity: mesh of t_{n+1}
       const double s = rule_.weight[q] * e.geo.absdet, s1 = rule_.weight[q] * e.geo1.absdet;
       double v[3] = {}, a[3] = {}, G[3][3] = {}, div1 = 0, p = 0, w[3] = {};
       for (int b = 0; b < 10; ++b)
@@ -101,7 +107,7 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
           a[i] += N[b] * e.a[b][i];
           for (int j = 0; j < 3; ++j)
             G[i][j] += e.v[b][i] * dN[b][j];
-          div1 += e.u1[b][i] * dN1[b][i];
+          div1 += e.u1[b][i] * dNc[b][i];
         }
       for (int b = 0; b < 4; ++b) {
         p += l[b] * e.p[b];
@@ -154,7 +160,8 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
       const double *N = N_[q].data();
       double dN[10][3], dN1[10][3], Nd[10];
       p2_tet(l, e.geo.grad_lambda, Nd, dN);
-      p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
+      if (e.moving) p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
+      const double(&dNc)[10][3] = e.moving ? dN1 : dN; // continuity: mesh of t_{n+1}
       const double s = rule_.weight[q] * e.geo.absdet, s1 = rule_.weight[q] * e.geo1.absdet;
       double c[3] = {}, G[3][3] = {};
       if (conv) {
@@ -187,7 +194,7 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
         for (int b = 0; b < 4; ++b)
           for (int i = 0; i < 3; ++i) {
             K[3 * a + i][30 + b] -= s * l[b] * dN[a][i];
-            K[30 + b][3 * a + i] -= s1 * l[b] * dN1[a][i];
+            K[30 + b][3 * a + i] -= s1 * l[b] * dNc[a][i];
           }
       }
     }

@@ -65,8 +65,7 @@ static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
   return 0;
 }
 
-Problem::Problem(const Mesh &mesh, const Space &space, const TimeParams &tp)
-    : mesh_(mesh), space_(space), tp_(tp) {
+Problem::Problem(const Space &space, const TimeParams &tp) : space_(space), tp_(tp) {
   if (!tp.steady) {
     const double r = tp.rho_inf;
     alpha_m_ = (3 - r) / (2 * (1 + r));
@@ -246,7 +245,9 @@ void Problem::set_context(double t_np1) {
   ctx_.gamma = gamma_;
   ctx_.t_af = tp_.steady ? t_np1 : t_ + alpha_f_ * tp_.dt;
   ctx_.X_af = Xaf_.data();
-  ctx_.X_np1 = Xnp1_.data();
+  // Without mesh motion both configurations are the same array: kernels then skip the second
+  // geometry (pointer equality).
+  ctx_.X_np1 = motion_ ? Xnp1_.data() : Xaf_.data();
   ctx_.W = motion_ && !tp_.steady ? W_.data() : nullptr;
   ctx_.is_dirichlet = &bcs_->dirichlet_mask();
 }
