@@ -12,6 +12,8 @@
 #include "fsi/options.hpp"
 #include "fsi/output.hpp"
 #include "fsi/problem.hpp"
+#include "fsi/solid.hpp"
+#include "fsi/solid_monitors.hpp"
 #include "fsi/space.hpp"
 #include "fsi/stages.hpp"
 
@@ -23,8 +25,8 @@ using namespace fsi;
 
 static const char help[] = "fsi_app: monolithic ALE fluid-structure interaction (P2P1 "
                            "Navier-Stokes, hyperelastic solid).\n"
-                           "Scene options: -scene_name, -physics fluid, -mesh_geo/-mesh_h or "
-                           "-mesh_file, -fluid_*, -bc_*,\n"
+                           "Scene options: -scene_name, -physics fluid,solid, -mesh_geo/-mesh_h "
+                           "or -mesh_file, -fluid_*, -solid_*, -bc_*,\n"
                            "-ts_scheme alpha|steady, -ts_dt, -ts_max_steps|-ts_max_time, "
                            "-ts_alpha_radius, -ic rest|exact,\n"
                            "-exact_solution, -ale_motion, -monitor_surfaces, -probe_points, "
@@ -77,15 +79,18 @@ int run(MPI_Comm comm) {
   // Scene: what physics, where the results go.
   const std::string scene = opt::string("scene_name", "scene");
   const auto physics = opt::list("physics");
-  if (physics.empty()) throw InputError("the scene switches no physics on: give -physics fluid");
-  bool want_fluid = false;
+  if (physics.empty())
+    throw InputError("the scene switches no physics on: give -physics fluid, solid or both");
+  bool want_fluid = false, want_solid = false;
   for (auto &p : physics) {
     if (p == "fluid")
       want_fluid = true;
-    else if (p == "solid" || p == "ale")
-      throw InputError("-physics " + p + " is not available yet in this build: use -physics fluid");
+    else if (p == "solid")
+      want_solid = true;
+    else if (p == "ale")
+      throw InputError("-physics ale is not available yet in this build: use fluid and/or solid");
     else
-      throw InputError("-physics has unknown value '" + p + "'; use: fluid");
+      throw InputError("-physics has unknown value '" + p + "'; use: fluid, solid");
   }
   Output out(comm, opt::string("out_dir", "results/" + scene));
   const long fields_every = opt::integer("out_fields_every", 0);
@@ -107,16 +112,27 @@ int run(MPI_Comm comm) {
     exact = make_exact_flow(fluid->params().rho, fluid->params().mu);
     pb.add_module(std::move(f));
   }
+  SolidModule *solid = nullptr;
+  std::unique_ptr<ExactSolid> exact_solid;
+  if (want_solid) {
+    exact_solid = make_exact_solid();
+    auto s = std::make_unique<SolidModule>(space, mesh, SolidParams::from_options(),
+                                           make_material(), exact_solid.get());
+    solid = s.get();
+    pb.add_module(std::move(s));
+  }
   pb.set_exact(exact.get());
   pb.set_mesh_motion(make_mesh_motion(space));
   Boundaries bcs;
-  bcs.setup(mesh, space, exact.get(), fluid ? fluid->params().mu : 0.0,
-            fluid ? fluid->params().rho : 0.0);
+  bcs.setup(mesh, space, exact.get(), exact_solid.get(), fluid ? fluid->params().mu : 0.0,
+            fluid ? fluid->params().rho : 0.0, fluid ? &fluid->cells() : nullptr);
   pb.set_boundaries(&bcs);
   pb.setup_solver();
   Monitors mon;
   mon.setup(mesh, space, fluid, exact.get());
-  const std::string ic = opt::choice("ic", "rest", {"rest", "exact"});
+  SolidMonitors smon;
+  smon.setup(space, solid, exact_solid.get());
+  const std::string ic = opt::choice("ic", "rest", {"rest", "exact", "velocity"});
   pb.initialize(ic);
 
   int size;
@@ -130,9 +146,15 @@ int run(MPI_Comm comm) {
     PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(),
                 (int)m->n_cells());
   out.write_options();
-  out.open_monitor(mon.columns());
+  auto columns = mon.columns(), solid_columns = smon.columns();
+  columns.insert(columns.end(), solid_columns.begin(), solid_columns.end());
+  out.open_monitor(columns);
   std::unique_ptr<FieldWriter> fields;
-  if (fields_every > 0) fields = std::make_unique<FieldWriter>(space, out.dir());
+  FieldSet field_set;
+  field_set.pressure = fluid != nullptr;
+  field_set.mesh_displacement = pb.mesh_motion() != nullptr;
+  field_set.displacement = solid != nullptr;
+  if (fields_every > 0) fields = std::make_unique<FieldWriter>(space, out.dir(), field_set);
   FSI_CALL(PetscLogStagePop());
   const double setup_time = MPI_Wtime() - t_start;
 
@@ -157,14 +179,17 @@ int run(MPI_Comm comm) {
       FSI_CALL(PetscLogStagePush(st.output));
       std::vector<double> row = {(double)pb.step_index(), pb.time(), (double)s.newton,
                                  (double)s.krylov, step_s};
-      auto m = mon.evaluate(pb);
+      auto m = mon.evaluate(pb), sm = smon.evaluate(pb);
       row.insert(row.end(), m.begin(), m.end());
+      row.insert(row.end(), sm.begin(), sm.end());
       out.monitor_row(row);
       if (fields && pb.step_index() % fields_every == 0) {
-        Vec loc = space.create_local();
+        Vec loc = space.create_local(), dloc = space.create_local();
         pb.solution_local(loc);
-        fields->write(pb.step_index(), pb.time(), loc, pb.coordinates());
+        pb.displacement_local(dloc);
+        fields->write(pb.step_index(), pb.time(), loc, pb.coordinates(), dloc);
         FSI_CALL(VecDestroy(&loc));
+        FSI_CALL(VecDestroy(&dloc));
       }
       FSI_CALL(PetscLogStagePop());
       output_time += MPI_Wtime() - o0;
@@ -190,8 +215,9 @@ int run(MPI_Comm comm) {
   // assembly.
   double ls = c.nonlinear_solve_time - c.jacobian_time - c.residual_time, ls_max;
   MPI_Allreduce(&ls, &ls_max, 1, MPI_DOUBLE, MPI_MAX, comm);
-  PetscInt fc = fluid ? fluid->n_cells() : 0, fc_g;
-  MPI_Allreduce(&fc, &fc_g, 1, MPIU_INT, MPI_SUM, comm);
+  PetscInt cc[2] = {fluid ? fluid->n_cells() : 0, solid ? solid->n_cells() : 0}, cc_g[2];
+  MPI_Allreduce(cc, cc_g, 2, MPIU_INT, MPI_SUM, comm);
+  const PetscInt fc_g = cc_g[0], sc_g = cc_g[1];
 
   std::vector<std::string> active;
   for (auto &m : pb.modules())
@@ -217,9 +243,9 @@ int run(MPI_Comm comm) {
       .set("residuals", c.residuals)
       .set("linear_solver_seconds_per_newton", tot.newton ? ls_max / tot.newton : 0.0)
       .set("jacobian_tets_per_second_per_rank",
-           jt_max > 0 ? double(fc_g) / size * c.jacobians / jt_max : 0.0)
+           jt_max > 0 ? double(fc_g + sc_g) / size * c.jacobians / jt_max : 0.0)
       .set("residual_tets_per_second_per_rank",
-           rt_max > 0 ? double(fc_g) / size * c.residuals / rt_max : 0.0)
+           rt_max > 0 ? double(fc_g + sc_g) / size * c.residuals / rt_max : 0.0)
       .set("peak_memory_mb_per_rank_max", mem_max);
   j.set("scene", scene)
       .set("physics", active)
@@ -227,6 +253,7 @@ int run(MPI_Comm comm) {
       .set("mesh", mesh.source)
       .set("cells", (long)mesh.cells_global)
       .set("fluid_cells", (long)fc_g)
+      .set("solid_cells", (long)sc_g)
       .set("vertices", (long)mesh.vertices_global)
       .set("dofs", dofs)
       .set("time_scheme", tp.steady ? "steady" : "generalized-alpha")
@@ -246,6 +273,12 @@ int run(MPI_Comm comm) {
         .set("pressure_l2", e.p_l2)
         .set("velocity_l2_relative", e.v_l2 / e.v_norm)
         .set("pressure_l2_relative", e.p_l2 / e.p_norm);
+    j.set("error_final", err);
+  }
+  if (smon.columns().size() && exact_solid && tot.steps > 0) {
+    Json err;
+    err.set("displacement_l2", smon.error_l2())
+        .set("displacement_l2_relative", smon.error_relative());
     j.set("error_final", err);
   }
   out.write_summary(j);

@@ -65,6 +65,13 @@ def order(e_coarse, e_fine, h_coarse, h_fine):
     return math.log(e_coarse / e_fine) / math.log(h_coarse / h_fine)
 
 
+def fit_order(hs, es):
+    """Least-squares slope of log e against log h."""
+    xs, ys = [math.log(h) for h in hs], [math.log(e) for e in es]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
 def finish():
     n = len(FAILURES)
     print(f"{'all checks passed' if n == 0 else str(n) + ' check(s) failed'}")

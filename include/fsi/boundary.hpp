@@ -11,6 +11,15 @@
 //                                inlet needs): keeps
 //                                the energy bounded when flow re-enters through the boundary
 //   traction_exact               traction sigma_exact n from -exact_solution (verification)
+// Solid boundaries:
+//   clamped                      u = 0 (the velocity is held at zero)
+//   displacement                 u = value * direction * waveform(t) [m], or -bc_<name>_profile
+//                                exact (-exact_displacement); imposed through the velocity by
+//                                the Newmark relation so that u_{n+1} is exact
+//   traction                     dead load: nominal traction value [Pa] * direction * waveform(t)
+//                                per unit reference area
+//   follower_pressure            pressure value [Pa] * waveform(t) on the deformed surface:
+//                                traction -p n da (p < 0 pulls); its Jacobian is included
 // Waveforms: -bc_<name>_waveform constant|step|cosine|sine (+ _t_off, _period, _ramp).
 // -bc_<name>_components x,y: the velocity components the boundary fixes.  Default: all for
 // noslip/velocity, none for pressure/traction; on a pressure boundary, fixing the tangential
@@ -19,6 +28,7 @@
 // current positions; tractions enter the momentum residual at t_{n+alpha_f}.
 #pragma once
 #include "fsi/analytic.hpp"
+#include "fsi/exact_solid.hpp"
 #include "fsi/p2tet.hpp"
 #include "fsi/space.hpp"
 #include "fsi/step_context.hpp"
@@ -28,33 +38,59 @@
 namespace fsi {
 
 struct BoundaryCondition {
-  enum Type { NoSlip, Velocity, Pressure, TractionExact } type = NoSlip;
+  enum Type {
+    NoSlip,
+    Velocity,
+    Pressure,
+    TractionExact,
+    Clamped,
+    Displacement,
+    Traction,
+    FollowerPressure
+  } type = NoSlip;
   std::string name, profile = "uniform";
   double value = 0, dir[3] = {0, 0, 1}, center[3] = {0, 0, 0}, radius = 1, beta = 0;
   Waveform wave;
   bool fixed[3] = {false, false, false}; // velocity components fixed on this boundary
   std::vector<DofNode> nodes;            // Dirichlet types
   std::vector<BoundaryFace> faces;       // traction types
+  bool displacement_type() const { return type == Displacement; }
+  bool dirichlet() const {
+    return type == NoSlip || type == Velocity || type == Clamped || type == Displacement;
+  }
+  bool fluid_traction() const { return type == Pressure || type == TractionExact; }
 };
 
 class Boundaries {
 public:
-  void setup(const Mesh &mesh, const Space &space, const ExactFlow *exact, double mu, double rho);
-  // Local dof mask of all Dirichlet dofs (velocity nodes and the pinned pressure, if any).
+  // fluid_cells: the fluid's local cells (nullptr without a fluid): pressure dofs of vertices
+  // outside the fluid are held at zero (they belong to no equation).
+  void setup(const Mesh &mesh, const Space &space, const ExactFlow *exact,
+             const ExactSolid *exact_solid, double mu, double rho,
+             const std::vector<PetscInt> *fluid_cells);
+  // Local dof mask of all Dirichlet dofs (velocity nodes and the pinned pressures).
   const std::vector<char> &dirichlet_mask() const { return mask_; }
   // (local dof, value) for every Dirichlet dof at time t, node positions X (3 per vertex).
   void dirichlet_values(double t, const double *X,
                         std::vector<std::pair<PetscInt, double>> &out) const;
+  // (local dof, displacement) for every prescribed-displacement dof at time t.
+  void displacement_values(double t, std::vector<std::pair<PetscInt, double>> &out) const;
   void add_traction_residual(const StepContext &ctx, PetscScalar *F) const;
-  void add_traction_jacobian(const StepContext &ctx, Mat J) const; // backflow term only
+  // Backflow and follower-pressure terms (the other loads do not depend on the unknown).
+  void add_traction_jacobian(const StepContext &ctx, Mat J) const;
   bool pressure_pinned() const { return pin_dof_ >= 0 || pinned_; }
   const std::vector<BoundaryCondition> &list() const { return bcs_; }
 
 private:
   std::vector<BoundaryCondition> bcs_;
   std::vector<char> mask_;
+  void add_solid_load_residual(const BoundaryCondition &bc, const StepContext &ctx,
+                               PetscScalar *F) const;
+  void add_follower_jacobian(const BoundaryCondition &bc, const StepContext &ctx, Mat J) const;
   const ExactFlow *exact_ = nullptr;
+  const ExactSolid *exact_solid_ = nullptr;
   const Space *space_ = nullptr;
+  std::vector<PetscInt> outside_fluid_; // pressure dofs held at zero
   double mu_ = 0, rho_ = 0;
   PetscInt pin_dof_ = -1;
   int pin_vertex_ = -1;

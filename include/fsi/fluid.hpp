@@ -35,6 +35,10 @@ public:
   void add_residual(const StepContext &ctx, PetscScalar *F) override;
   void add_jacobian(const StepContext &ctx, Mat J) override;
   PetscInt n_cells() const override { return (PetscInt)cells_.size(); }
+  void element_dofs(std::vector<PetscInt> &dofs, int &n) const override {
+    dofs = dofs_;
+    n = 34;
+  }
   const FluidParams &params() const { return p_; }
   const std::vector<PetscInt> &cells() const { return cells_; }
 

@@ -3,6 +3,7 @@
 #pragma once
 #include "fsi/step_context.hpp"
 #include <string>
+#include <vector>
 
 namespace fsi {
 
@@ -14,6 +15,8 @@ struct PhysicsModule {
   // Add this module's Jacobian into J (local indices, ADD_VALUES); rows of Dirichlet dofs skipped.
   virtual void add_jacobian(const StepContext &ctx, Mat J) = 0;
   virtual PetscInt n_cells() const = 0;
+  // The local dofs of each of its elements (n per element): the Jacobian's nonzero pattern.
+  virtual void element_dofs(std::vector<PetscInt> &dofs, int &n) const = 0;
 };
 
 } // namespace fsi

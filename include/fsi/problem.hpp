@@ -1,5 +1,6 @@
 // The nonlinear problem of one time step and the generalized-alpha time integrator around it.
-// Unknown U = (v, p) at t_{n+1}; history V_n = U_n and A_n = dU/dt at t_n (paper eq. 9):
+// Unknown U = (v, p) at t_{n+1}; history V_n = U_n, A_n = dU/dt at t_n (paper eq. 9) and the
+// solid displacement D_n (Newmark update, step_context.hpp):
 //   a_{n+1} = (v_{n+1} - v_n) / (gamma dt) - (1 - gamma) / gamma a_n,
 //   alpha_m = (3 - rho_inf) / (2 (1 + rho_inf)), alpha_f = 1 / (1 + rho_inf),
 //   gamma = 1/2 + alpha_m - alpha_f  (second order, rho_inf in [0, 1]).
@@ -48,6 +49,8 @@ public:
   void initialize(const std::string &ic);
   // Advance one step of size dt (or solve the steady problem).  Returns Newton statistics.
   StepStats step();
+  // ts_scheme steady: load steps of size dt over [0, ts_max_time]; the unknown's velocity part
+  // is then the displacement rate of the solid (u_{n+1} = u_n + dt v).
 
   double time() const { return t_; }
   long step_index() const { return n_; }
@@ -64,30 +67,34 @@ public:
   const CostCounters &cost() const { return cost_; }
   const TimeParams &time_params() const { return tp_; }
 
-  // SNES callbacks
-  void residual(Vec U, Vec F);
+  // Local copy of the solid displacement at the current time (velocity dofs).
+  void displacement_local(Vec &loc) const;
+
+  // SNES callbacks; residual() returns false where a solid element inverted.
+  bool residual(Vec U, Vec F);
   void jacobian(Vec U, Mat J);
 
 private:
   void create_matrix();
   void mesh_at(double t, std::vector<double> &disp) const;
   void set_context(double t_np1);
+  void displacement_to_velocity_values(double t_np1);
   const Space &space_;
   TimeParams tp_;
-  double alpha_m_ = 1, alpha_f_ = 1, gamma_ = 1;
+  double alpha_m_ = 1, alpha_f_ = 1, gamma_ = 1, beta_ = 0.25;
   std::vector<std::unique_ptr<PhysicsModule>> modules_;
   Boundaries *bcs_ = nullptr;
   std::unique_ptr<MeshMotion> motion_;
   const ExactFlow *exact_ = nullptr;
 
-  Vec U_ = nullptr, Vn_ = nullptr, An_ = nullptr, F_ = nullptr;
-  Vec Uloc_ = nullptr, Vloc_ = nullptr, Aloc_ = nullptr, Floc_ = nullptr;
+  Vec U_ = nullptr, Vn_ = nullptr, An_ = nullptr, F_ = nullptr, Dn_ = nullptr, work_ = nullptr;
+  Vec Uloc_ = nullptr, Vloc_ = nullptr, Aloc_ = nullptr, Floc_ = nullptr, Dloc_ = nullptr;
   Mat J_ = nullptr;
   SNES snes_ = nullptr;
   double t_ = 0;
   long n_ = 0;
   std::vector<double> dn_, dnp1_, Xn_, Xaf_, Xnp1_, W_;
-  std::vector<std::pair<PetscInt, double>> bc_values_;
+  std::vector<std::pair<PetscInt, double>> bc_values_, disp_values_;
   StepContext ctx_;
   CostCounters cost_;
 };

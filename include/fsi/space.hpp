@@ -63,9 +63,13 @@ struct Space {
   // Velocity nodes (vertices and edges) in the closure of boundary `name`, consistent across
   // ranks: a node shared with a rank that lacks the face is listed there too.
   std::vector<DofNode> boundary_velocity_nodes(const Mesh &mesh, const std::string &name) const;
-  // Local pressure dof of the lexicographically smallest vertex (partition independent), or -1
-  // if this rank does not see it; `vertex` receives its local vertex index.
-  PetscInt pinned_pressure_dof(int &vertex) const;
+  // Local pressure dof of the lexicographically smallest vertex (partition independent) among
+  // the pressure dofs marked in `among` (all if null), or -1 if this rank does not see it;
+  // `vertex` receives its local vertex index.
+  PetscInt pinned_pressure_dof(int &vertex, const std::vector<char> *among = nullptr) const;
+  // Mask over local dofs: the pressure dofs of the vertices of `cells` (local cell indices),
+  // the same on every rank that sees a vertex.
+  std::vector<char> pressure_dofs_of(const std::vector<PetscInt> &cells) const;
 };
 
 } // namespace fsi

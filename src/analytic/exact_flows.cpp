@@ -147,13 +147,16 @@ double Waveform::operator()(double t) const {
   if (kind == "step") return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
   if (kind == "cosine") return ramp * (offset + std::cos(2 * M_PI * t / period));
   if (kind == "sine") return ramp * (offset + std::sin(2 * M_PI * t / period));
+  if (kind == "linear") return ramp * t / period;
   return ramp;
 }
 
 Waveform Waveform::from_options(const std::string &prefix) {
   Waveform w;
-  w.kind = opt::choice(prefix + "waveform", "constant", {"constant", "step", "cosine", "sine"});
+  w.kind = opt::choice(prefix + "waveform", "constant",
+                       {"constant", "step", "cosine", "sine", "linear"});
   if (w.kind == "step") w.t_off = opt::required_positive(prefix + "t_off");
+  if (w.kind == "linear") w.period = opt::required_positive(prefix + "period");
   if (w.kind == "cosine" || w.kind == "sine") {
     w.period = opt::required_positive(prefix + "period");
     w.offset = opt::real(prefix + "offset", 0.0);

@@ -389,25 +389,59 @@ std::vector<DofNode> Space::boundary_velocity_nodes(const Mesh &mesh,
   return out;
 }
 
-PetscInt Space::pinned_pressure_dof(int &vertex) const {
+std::vector<char> Space::pressure_dofs_of(const std::vector<PetscInt> &cells) const {
+  // Mark locally, sum over ranks, read back: a vertex next to a listed cell on any rank is
+  // marked on every rank that sees it.
+  Vec l = create_local(), g = create_global();
+  PetscScalar *la;
+  FSI_CALL(VecZeroEntries(l));
+  FSI_CALL(VecZeroEntries(g));
+  FSI_CALL(VecGetArray(l, &la));
+  for (PetscInt k : cells)
+    for (int b = 0; b < 4; ++b)
+      la[cell_pdof[4 * k + b]] = 1;
+  FSI_CALL(VecRestoreArray(l, &la));
+  add_to_global(l, g);
+  to_local(g, l);
+  std::vector<char> mask(n_local, 0);
+  FSI_CALL(VecGetArray(l, &la));
+  for (PetscInt k = 0; k < n_cells(); ++k)
+    for (int b = 0; b < 4; ++b) {
+      const PetscInt d = cell_pdof[4 * k + b];
+      mask[d] = PetscRealPart(la[d]) > 0.5;
+    }
+  FSI_CALL(VecRestoreArray(l, &la));
+  FSI_CALL(VecDestroy(&l));
+  FSI_CALL(VecDestroy(&g));
+  return mask;
+}
+
+PetscInt Space::pinned_pressure_dof(int &vertex, const std::vector<char> *among) const {
   // The lexicographically smallest vertex (x, then y, then z): a choice that does not depend on
   // the partition, so 1 and 2 ranks solve the same discrete problem.
   MPI_Comm comm = PetscObjectComm((PetscObject)dm);
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(dm, &ls));
+  std::vector<char> allowed(n_vertices(), 1);
+  if (among)
+    for (PetscInt v = 0; v < n_vertices(); ++v) {
+      PetscInt off;
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v + vStart, 1, &off));
+      allowed[v] = (*among)[off];
+    }
   double best[3];
   for (int d = 0; d < 3; ++d) {
     double mine = 1e300;
     for (PetscInt v = 0; v < n_vertices(); ++v) {
-      bool ok = true;
+      bool ok = allowed[v];
       for (int e = 0; e < d; ++e)
         ok = ok && X[3 * v + e] == best[e];
       if (ok) mine = std::min(mine, X[3 * v + d]);
     }
     MPI_Allreduce(&mine, &best[d], 1, MPI_DOUBLE, MPI_MIN, comm);
   }
-  PetscSection ls;
-  FSI_CALL(DMGetLocalSection(dm, &ls));
   for (PetscInt v = 0; v < n_vertices(); ++v)
-    if (X[3 * v] == best[0] && X[3 * v + 1] == best[1] && X[3 * v + 2] == best[2]) {
+    if (allowed[v] && X[3 * v] == best[0] && X[3 * v + 1] == best[1] && X[3 * v + 2] == best[2]) {
       PetscInt off;
       FSI_CALL(PetscSectionGetFieldOffset(ls, v + vStart, 1, &off));
       vertex = (int)v;

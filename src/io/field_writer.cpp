@@ -5,7 +5,8 @@
 
 namespace fsi {
 
-FieldWriter::FieldWriter(const Space &space, const std::string &dir) : space_(space), dir_(dir) {
+FieldWriter::FieldWriter(const Space &space, const std::string &dir, const FieldSet &set)
+    : space_(space), dir_(dir), set_(set) {
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
   PetscSection ls;
   FSI_CALL(DMGetLocalSection(space.dm, &ls));
@@ -80,16 +81,27 @@ Vec FieldWriter::vertex_vec(int bs) const {
   return v;
 }
 
-void FieldWriter::write(long step, double t, Vec U_local, const std::vector<double> &X) {
+std::vector<std::pair<std::string, int>> FieldWriter::names() const {
+  std::vector<std::pair<std::string, int>> n = {{"velocity", 3}};
+  if (set_.pressure) n.push_back({"pressure", 1});
+  if (set_.mesh_displacement) n.push_back({"mesh_displacement", 3});
+  if (set_.displacement) n.push_back({"displacement", 3});
+  return n;
+}
+
+void FieldWriter::write(long step, double t, Vec U_local, const std::vector<double> &X,
+                        Vec D_local) {
   PetscSection ls;
   FSI_CALL(DMGetLocalSection(space_.dm, &ls));
-  const PetscScalar *u;
+  const PetscScalar *u, *dsol = nullptr;
   FSI_CALL(VecGetArrayRead(U_local, &u));
-  Vec vel = vertex_vec(3), p = vertex_vec(1), disp = vertex_vec(3);
-  PetscScalar *va, *pa, *da;
+  if (set_.displacement) FSI_CALL(VecGetArrayRead(D_local, &dsol));
+  Vec vel = vertex_vec(3), p = vertex_vec(1), disp = vertex_vec(3), sd = vertex_vec(3);
+  PetscScalar *va, *pa, *da, *sa;
   FSI_CALL(VecGetArray(vel, &va));
   FSI_CALL(VecGetArray(p, &pa));
   FSI_CALL(VecGetArray(disp, &da));
+  FSI_CALL(VecGetArray(sd, &sa));
   for (PetscInt i = 0; i < nv_owned_; ++i) {
     const PetscInt v = owned_vertices_[i];
     PetscInt o0, o1;
@@ -98,18 +110,31 @@ void FieldWriter::write(long step, double t, Vec U_local, const std::vector<doub
     for (int d = 0; d < 3; ++d) {
       va[3 * i + d] = u[o0 + d];
       da[3 * i + d] = X[3 * v + d] - space_.X[3 * v + d];
+      sa[3 * i + d] = dsol ? dsol[o0 + d] : 0.0;
     }
     pa[i] = u[o1];
   }
   FSI_CALL(VecRestoreArray(vel, &va));
   FSI_CALL(VecRestoreArray(p, &pa));
   FSI_CALL(VecRestoreArray(disp, &da));
+  FSI_CALL(VecRestoreArray(sd, &sa));
   FSI_CALL(VecRestoreArrayRead(U_local, &u));
+  if (dsol) FSI_CALL(VecRestoreArrayRead(D_local, &dsol));
   char tag[32];
   std::snprintf(tag, sizeof tag, "_%06ld", step);
   write_and_destroy("/fields", std::string("velocity") + tag, vel);
-  write_and_destroy("/fields", std::string("pressure") + tag, p);
-  write_and_destroy("/fields", std::string("mesh_displacement") + tag, disp);
+  if (set_.pressure)
+    write_and_destroy("/fields", std::string("pressure") + tag, p);
+  else
+    FSI_CALL(VecDestroy(&p));
+  if (set_.mesh_displacement)
+    write_and_destroy("/fields", std::string("mesh_displacement") + tag, disp);
+  else
+    FSI_CALL(VecDestroy(&disp));
+  if (set_.displacement)
+    write_and_destroy("/fields", std::string("displacement") + tag, sd);
+  else
+    FSI_CALL(VecDestroy(&sd));
   steps_.emplace_back(step, t);
 }
 
@@ -138,8 +163,7 @@ void FieldWriter::close() {
       << " 3\" NumberType=\"Float\" Precision=\"8\" "
          "Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
       << "    </Geometry>\n";
-    for (auto [name, nc_] :
-         {std::pair<const char *, int>{"velocity", 3}, {"pressure", 1}, {"mesh_displacement", 3}})
+    for (auto &[name, nc_] : names())
       f << "    <Attribute Name=\"" << name << "\" AttributeType=\""
         << (nc_ == 3 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n     <DataItem Dimensions=\""
         << nv << (nc_ == 3 ? " 3" : "")

@@ -1,8 +1,8 @@
 #include "fsi/monitors.hpp"
+#include "fsi/locate.hpp"
 #include "fsi/options.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace fsi {
 
@@ -19,55 +19,19 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
   for (auto &n : surf_names_)
     surf_faces_.push_back(space.boundary_faces(mesh, n));
 
-  std::string pts = opt::string("probe_points", "");
-  std::stringstream ss(pts);
-  std::string item;
-  int rank;
-  MPI_Comm_rank(comm_, &rank);
-  while (std::getline(ss, item, ';')) {
-    if (item.empty()) continue;
+  for (auto &x : parse_points("probe_points")) {
+    if (!fluid) throw InputError("-probe_points needs a fluid (solid points: -solid_probe_points)");
+    PointLocation loc = locate_point(space, fluid->cells(), x.data());
+    if (loc.owner < 0)
+      throw InputError("probe point " + std::to_string(x[0]) + "," + std::to_string(x[1]) + "," +
+                       std::to_string(x[2]) + " lies outside the fluid mesh");
     Probe p;
-    std::stringstream is(item);
-    std::string c;
-    int k = 0;
-    while (std::getline(is, c, ',') && k < 3)
-      p.x[k++] = std::atof(c.c_str());
-    if (k != 3) throw InputError("-probe_points expects x,y,z;x,y,z;... got '" + item + "'");
-    double best = -1e300;
-    PetscInt best_cell = -1;
-    double bl[4] = {};
-    for (PetscInt cell : fluid ? fluid->cells() : std::vector<PetscInt>{}) {
-      double X[4][3];
-      for (int i = 0; i < 4; ++i)
-        for (int d = 0; d < 3; ++d)
-          X[i][d] = space.X[3 * space.cell_vertex[4 * cell + i] + d];
-      TetGeometry g;
-      g.set(X);
-      double l[4], s = 0;
-      for (int i = 1; i < 4; ++i) {
-        l[i] = 0;
-        for (int d = 0; d < 3; ++d)
-          l[i] += g.grad_lambda[i][d] * (p.x[d] - X[0][d]);
-        s += l[i];
-      }
-      l[0] = 1 - s;
-      double mn = std::min(std::min(l[0], l[1]), std::min(l[2], l[3]));
-      if (mn > best) {
-        best = mn;
-        best_cell = cell;
-        for (int i = 0; i < 4; ++i)
-          bl[i] = l[i];
-      }
-    }
-    int mine = best > -1e-8 ? rank : 1 << 30, owner;
-    MPI_Allreduce(&mine, &owner, 1, MPI_INT, MPI_MIN, comm_);
-    if (owner == 1 << 30) throw InputError("probe point " + item + " lies outside the fluid mesh");
-    p.owner = owner;
-    if (owner == rank) {
-      p.cell = best_cell;
-      for (int i = 0; i < 4; ++i)
-        p.lambda[i] = bl[i];
-    }
+    for (int d = 0; d < 3; ++d)
+      p.x[d] = x[d];
+    p.owner = loc.owner;
+    p.cell = loc.cell;
+    for (int i = 0; i < 4; ++i)
+      p.lambda[i] = loc.lambda[i];
     probes_.push_back(p);
   }
 }

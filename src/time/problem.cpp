@@ -23,8 +23,11 @@ Stages &Stages::get() {
 TimeParams TimeParams::from_options() {
   TimeParams tp;
   tp.steady = opt::choice("ts_scheme", "alpha", {"alpha", "steady"}) == "steady";
-  if (tp.steady) {
-    tp.max_steps = 1;
+  if (tp.steady) { // load steps over the pseudo-time [0, ts_max_time]
+    tp.t_end = opt::positive("ts_max_time", 1.0);
+    tp.max_steps = opt::integer("ts_max_steps", 1);
+    if (tp.max_steps < 1) throw InputError("option -ts_max_steps must be >= 1");
+    tp.dt = tp.t_end / tp.max_steps;
     return tp;
   }
   tp.dt = opt::positive("ts_dt", 1e-3);
@@ -47,9 +50,9 @@ TimeParams TimeParams::from_options() {
   return tp;
 }
 
-static PetscErrorCode residual_cb(SNES, Vec U, Vec F, void *ctx) {
+static PetscErrorCode residual_cb(SNES snes, Vec U, Vec F, void *ctx) {
   try {
-    static_cast<Problem *>(ctx)->residual(U, F);
+    if (!static_cast<Problem *>(ctx)->residual(U, F)) PetscCall(SNESSetFunctionDomainError(snes));
   } catch (std::exception &e) {
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
   }
@@ -71,22 +74,26 @@ Problem::Problem(const Space &space, const TimeParams &tp) : space_(space), tp_(
     alpha_m_ = (3 - r) / (2 * (1 + r));
     alpha_f_ = 1 / (1 + r);
     gamma_ = 0.5 + alpha_m_ - alpha_f_;
+    beta_ = 0.25 * (1 + alpha_m_ - alpha_f_) * (1 + alpha_m_ - alpha_f_);
   }
   U_ = space.create_global();
   FSI_CALL(PetscObjectSetName((PetscObject)U_, "solution"));
   FSI_CALL(VecDuplicate(U_, &Vn_));
   FSI_CALL(VecDuplicate(U_, &An_));
   FSI_CALL(VecDuplicate(U_, &F_));
+  FSI_CALL(VecDuplicate(U_, &Dn_));
+  FSI_CALL(VecDuplicate(U_, &work_));
   Uloc_ = space.create_local();
+  FSI_CALL(VecDuplicate(Uloc_, &Dloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Vloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Aloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Floc_));
-  create_matrix();
   Xn_ = space.X;
 }
 
-// The Jacobian's nonzero pattern from our own cell tables (every dof of a cell couples with
-// every other), so it is exact for any set of modules and built once for the whole run.
+// The Jacobian's nonzero pattern from the modules' element dof lists (every dof of an element
+// couples with every other) plus the diagonal: exact for the modules the scene switched on (a
+// solid cell has no pressure coupling), built once for the whole run.
 void Problem::create_matrix() {
   MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
   ISLocalToGlobalMapping l2g = space_.l2g;
@@ -96,15 +103,14 @@ void Problem::create_matrix() {
   FSI_CALL(MatSetType(pre, MATPREALLOCATOR));
   FSI_CALL(MatSetLocalToGlobalMapping(pre, l2g, l2g));
   FSI_CALL(MatSetUp(pre));
-  PetscInt idx[34];
-  double zeros[34 * 34] = {};
-  for (PetscInt k = 0; k < space_.n_cells(); ++k) {
-    for (int a = 0; a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        idx[3 * a + i] = space_.cell_vdof[10 * k + a] + i;
-    for (int b = 0; b < 4; ++b)
-      idx[30 + b] = space_.cell_pdof[4 * k + b];
-    FSI_CALL(MatSetValuesLocal(pre, 34, idx, 34, idx, zeros, INSERT_VALUES));
+  std::vector<double> zeros(64 * 64, 0.0);
+  for (auto &m : modules_) {
+    std::vector<PetscInt> dofs;
+    int n = 0;
+    m->element_dofs(dofs, n);
+    for (size_t e = 0; n > 0 && e < dofs.size() / n; ++e)
+      FSI_CALL(
+          MatSetValuesLocal(pre, n, &dofs[n * e], n, &dofs[n * e], zeros.data(), INSERT_VALUES));
   }
   for (PetscInt r = space_.rstart; r < space_.rstart + space_.n_owned; ++r)
     FSI_CALL(MatSetValue(pre, r, r, 0.0, INSERT_VALUES));
@@ -121,7 +127,7 @@ void Problem::create_matrix() {
 }
 
 Problem::~Problem() {
-  Vec *vs[] = {&U_, &Vn_, &An_, &F_, &Uloc_, &Vloc_, &Aloc_, &Floc_};
+  Vec *vs[] = {&U_, &Vn_, &An_, &F_, &Dn_, &work_, &Uloc_, &Dloc_, &Vloc_, &Aloc_, &Floc_};
   for (auto v : vs)
     if (*v) VecDestroy(v);
   if (J_) MatDestroy(&J_);
@@ -130,6 +136,7 @@ Problem::~Problem() {
 
 void Problem::setup_solver() {
   MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
+  create_matrix();
   FSI_CALL(SNESCreate(comm, &snes_));
   FSI_CALL(SNESSetFunction(snes_, F_, residual_cb, this));
   FSI_CALL(SNESSetJacobian(snes_, J_, J_, jacobian_cb, this));
@@ -157,6 +164,10 @@ void Problem::solution_local(Vec &loc) const {
   space_.to_local(U_, loc);
 }
 
+void Problem::displacement_local(Vec &loc) const {
+  space_.to_local(Dn_, loc);
+}
+
 void Problem::initialize(const std::string &ic) {
   t_ = 0;
   n_ = 0;
@@ -166,7 +177,29 @@ void Problem::initialize(const std::string &ic) {
   FSI_CALL(VecZeroEntries(U_));
   FSI_CALL(VecZeroEntries(Vn_));
   FSI_CALL(VecZeroEntries(An_));
-  if (ic == "exact") {
+  FSI_CALL(VecZeroEntries(Dn_));
+  if (ic == "velocity") {
+    // A uniform initial velocity (-ic_velocity x,y,z [m/s]) on every node that no Dirichlet
+    // condition holds: e.g. a clamped block set vibrating.  u_0 = 0 and no load give a_0 = 0.
+    auto v0 = opt::reals("ic_velocity");
+    if (v0.size() != 3) throw InputError("-ic velocity needs -ic_velocity vx,vy,vz [m/s]");
+    PetscScalar *u;
+    FSI_CALL(VecGetArray(U_, &u));
+    const std::vector<char> &mask = bcs_->dirichlet_mask();
+    for (PetscInt v = space_.vStart; v < space_.eEnd; ++v) {
+      PetscSection ls;
+      PetscInt off, dof;
+      FSI_CALL(DMGetLocalSection(space_.dm, &ls));
+      FSI_CALL(PetscSectionGetFieldDof(ls, v, 0, &dof));
+      if (dof != 3) continue;
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v, 0, &off));
+      for (int d = 0; d < 3; ++d)
+        if (space_.owned(off + d) && !mask[off + d])
+          u[space_.local_to_global[off + d] - space_.rstart] = v0[d];
+    }
+    FSI_CALL(VecRestoreArray(U_, &u));
+    FSI_CALL(VecCopy(U_, Vn_));
+  } else if (ic == "exact") {
     if (!exact_) throw InputError("-ic exact needs -exact_solution");
     // Values on every local node; the nodal time derivative follows the node along its mesh
     // trajectory x(t) = X + d_m(t) (ALE), by a central difference of the exact flow.
@@ -231,7 +264,8 @@ void Problem::initialize(const std::string &ic) {
     FSI_CALL(VecRestoreArray(Aloc_, &a));
     FSI_CALL(VecCopy(U_, Vn_));
   } else if (ic != "rest") {
-    throw InputError("option -ic has unknown value '" + ic + "'; use one of: rest, exact");
+    throw InputError("option -ic has unknown value '" + ic +
+                     "'; use one of: rest, exact, velocity");
   }
 }
 
@@ -243,6 +277,7 @@ void Problem::set_context(double t_np1) {
   ctx_.alpha_m = alpha_m_;
   ctx_.alpha_f = alpha_f_;
   ctx_.gamma = gamma_;
+  ctx_.beta = beta_;
   ctx_.t_af = tp_.steady ? t_np1 : t_ + alpha_f_ * tp_.dt;
   ctx_.X_af = Xaf_.data();
   // Without mesh motion both configurations are the same array: kernels then skip the second
@@ -254,7 +289,7 @@ void Problem::set_context(double t_np1) {
 
 StepStats Problem::step() {
   Stages &st = Stages::get();
-  const double t_np1 = tp_.steady ? 0.0 : t_ + tp_.dt;
+  const double t_np1 = t_ + tp_.dt;
   // Mesh configuration: at n+1, at n+alpha_f, and the mesh velocity.
   FSI_CALL(PetscLogStagePush(st.mesh_motion));
   mesh_at(t_np1, dnp1_);
@@ -274,8 +309,10 @@ StepStats Problem::step() {
   // History in local form, predictor U = V_n, then Dirichlet data at t_{n+1}.
   space_.to_local(Vn_, Vloc_);
   space_.to_local(An_, Aloc_);
+  space_.to_local(Dn_, Dloc_);
   FSI_CALL(VecCopy(Vn_, U_));
   bcs_->dirichlet_values(t_np1, Xnp1_.data(), bc_values_);
+  displacement_to_velocity_values(t_np1);
   PetscScalar *u;
   FSI_CALL(VecGetArray(U_, &u));
   for (auto &[dof, val] : bc_values_)
@@ -291,14 +328,25 @@ StepStats Problem::step() {
   FSI_CALL(SNESGetIterationNumber(snes_, &s.newton));
   FSI_CALL(SNESGetLinearSolveIterations(snes_, &s.krylov));
   FSI_CALL(SNESGetConvergedReason(snes_, &s.reason));
+  if (s.reason == SNES_DIVERGED_FUNCTION_DOMAIN)
+    throw SolveError("a solid element inverted (det F <= 0) at step " + std::to_string(n_ + 1) +
+                     " (t = " + std::to_string(t_np1) +
+                     "): the load or time step is too large for this mesh; use more steps");
   if (s.reason < 0)
     throw SolveError(std::string("Newton did not converge at step ") + std::to_string(n_ + 1) +
                      " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[s.reason]);
 
-  if (!tp_.steady) {
-    // a_{n+1} = (v_{n+1} - v_n) / (gamma dt) - (1 - gamma) / gamma a_n
-    FSI_CALL(VecAXPBYPCZ(An_, 1.0 / (gamma_ * tp_.dt), -1.0 / (gamma_ * tp_.dt),
-                         -(1 - gamma_) / gamma_, U_, Vn_));
+  const double dt = tp_.dt;
+  if (tp_.steady) {
+    FSI_CALL(VecAXPY(Dn_, dt, U_)); // u_{n+1} = u_n + dt v
+  } else {
+    // a_{n+1} = (v_{n+1} - v_n) / (gamma dt) - (1 - gamma) / gamma a_n, then the Newmark update
+    // u_{n+1} = u_n + dt v_n + dt^2 [(1/2 - beta) a_n + beta a_{n+1}].
+    FSI_CALL(VecCopy(An_, work_));
+    FSI_CALL(VecAXPBYPCZ(An_, 1.0 / (gamma_ * dt), -1.0 / (gamma_ * dt), -(1 - gamma_) / gamma_, U_,
+                         Vn_));
+    FSI_CALL(VecAXPBYPCZ(Dn_, dt, dt * dt * (0.5 - beta_), 1.0, Vn_, work_));
+    FSI_CALL(VecAXPY(Dn_, dt * dt * beta_, An_));
   }
   FSI_CALL(VecCopy(U_, Vn_));
   dn_ = dnp1_;
@@ -308,14 +356,46 @@ StepStats Problem::step() {
   return s;
 }
 
-void Problem::residual(Vec U, Vec F) {
+// Prescribed displacements g at t_{n+1} become velocity values through the Newmark relation
+// (step_context.hpp) solved for v_{n+1}, so that u_{n+1} = g exactly.
+void Problem::displacement_to_velocity_values(double t_np1) {
+  bcs_->displacement_values(t_np1, disp_values_);
+  if (disp_values_.empty()) return;
+  const PetscScalar *v, *a, *d;
+  FSI_CALL(VecGetArrayRead(Vloc_, &v));
+  FSI_CALL(VecGetArrayRead(Aloc_, &a));
+  FSI_CALL(VecGetArrayRead(Dloc_, &d));
+  PetscScalar *u;
+  FSI_CALL(VecGetArray(U_, &u));
+  const double dt = tp_.dt;
+  for (auto &[i, g] : disp_values_) {
+    double val;
+    if (tp_.steady)
+      val = (g - PetscRealPart(d[i])) / dt;
+    else
+      val = PetscRealPart(v[i]) +
+            gamma_ / (beta_ * dt) *
+                (g - PetscRealPart(d[i]) - dt * PetscRealPart(v[i]) -
+                 dt * dt * ((0.5 - beta_) - beta_ * (1 - gamma_) / gamma_) * PetscRealPart(a[i]));
+    bc_values_.emplace_back(i, val);
+    if (space_.owned(i)) u[space_.local_to_global[i] - space_.rstart] = val;
+  }
+  FSI_CALL(VecRestoreArray(U_, &u));
+  FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
+  FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
+  FSI_CALL(VecRestoreArrayRead(Dloc_, &d));
+}
+
+bool Problem::residual(Vec U, Vec F) {
   Stages &st = Stages::get();
   FSI_CALL(PetscLogStagePush(st.assembly));
   const double t0 = MPI_Wtime();
   space_.to_local(U, Uloc_);
   FSI_CALL(VecZeroEntries(Floc_));
-  const PetscScalar *u, *v, *a;
+  const PetscScalar *u, *v, *a, *dn;
   PetscScalar *f;
+  FSI_CALL(VecGetArrayRead(Dloc_, &dn));
+  ctx_.Dn = dn;
   FSI_CALL(VecGetArrayRead(Uloc_, &u));
   FSI_CALL(VecGetArrayRead(Vloc_, &v));
   FSI_CALL(VecGetArrayRead(Aloc_, &a));
@@ -323,9 +403,14 @@ void Problem::residual(Vec U, Vec F) {
   ctx_.U = u;
   ctx_.Vn = v;
   ctx_.An = a;
-  for (auto &m : modules_)
-    m->add_residual(ctx_, f);
-  bcs_->add_traction_residual(ctx_, f);
+  bool valid = true;
+  try {
+    for (auto &m : modules_)
+      m->add_residual(ctx_, f);
+    bcs_->add_traction_residual(ctx_, f);
+  } catch (SolveError &) { // an inverted solid element: outside the domain of the residual
+    valid = false;
+  }
   FSI_CALL(VecRestoreArray(Floc_, &f));
   FSI_CALL(VecZeroEntries(F));
   space_.add_to_global(Floc_, F);
@@ -338,9 +423,13 @@ void Problem::residual(Vec U, Vec F) {
   FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
   FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
   FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
+  FSI_CALL(VecRestoreArrayRead(Dloc_, &dn));
   cost_.residuals++;
   cost_.residual_time += MPI_Wtime() - t0;
   FSI_CALL(PetscLogStagePop());
+  int ok = valid, all_ok;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PetscObjectComm((PetscObject)F));
+  return all_ok;
 }
 
 void Problem::jacobian(Vec U, Mat J) {
@@ -349,7 +438,9 @@ void Problem::jacobian(Vec U, Mat J) {
   const double t0 = MPI_Wtime();
   space_.to_local(U, Uloc_);
   FSI_CALL(MatZeroEntries(J));
-  const PetscScalar *u, *v, *a;
+  const PetscScalar *u, *v, *a, *dn;
+  FSI_CALL(VecGetArrayRead(Dloc_, &dn));
+  ctx_.Dn = dn;
   FSI_CALL(VecGetArrayRead(Uloc_, &u));
   FSI_CALL(VecGetArrayRead(Vloc_, &v));
   FSI_CALL(VecGetArrayRead(Aloc_, &a));
@@ -366,6 +457,7 @@ void Problem::jacobian(Vec U, Mat J) {
   FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
   FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
   FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
+  FSI_CALL(VecRestoreArrayRead(Dloc_, &dn));
   FSI_CALL(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   FSI_CALL(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   cost_.jacobians++;

@@ -1,0 +1,198 @@
+#include "fsi/solid.hpp"
+#include "fsi/options.hpp"
+
+#include <cstring>
+
+namespace fsi {
+
+SolidParams SolidParams::from_options() {
+  SolidParams p;
+  p.region = opt::string("solid_region", "solid");
+  p.rho = opt::positive("solid_rho", p.rho);
+  if (opt::has("solid_gravity")) {
+    auto g = opt::reals("solid_gravity");
+    if (g.size() != 3) throw InputError("option -solid_gravity needs 3 numbers gx,gy,gz [m/s^2]");
+    for (int i = 0; i < 3; ++i)
+      p.gravity[i] = g[i];
+  }
+  p.quad_degree = (int)opt::integer("solid_quad_degree", 4);
+  if (p.quad_degree < 2 || p.quad_degree > 10)
+    throw InputError("option -solid_quad_degree must be in [2, 10]");
+  p.direct_insertion = opt::flag("solid_direct_insertion", true);
+  return p;
+}
+
+SolidModule::SolidModule(const Space &space, const Mesh &mesh, const SolidParams &p,
+                         std::unique_ptr<Material> material, const ExactSolid *exact)
+    : space_(space), p_(p), material_(std::move(material)), exact_(exact) {
+  comm_ = PetscObjectComm((PetscObject)space.dm);
+  mesh.require_groups({p.region}, "the solid (-solid_region)");
+  cells_ = mesh.cells_in(p.region);
+  for (auto &c : cells_)
+    c -= space.cStart;
+  rule_ = tet_rule(p.quad_degree);
+  dofs_.resize(30 * cells_.size());
+  for (size_t c = 0; c < cells_.size(); ++c)
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        dofs_[30 * c + 3 * a + i] = space.cell_vdof[10 * cells_[c] + a] + i;
+  for (auto &l : rule_.lambda) {
+    std::array<double, 10> n;
+    double gl[4][3] = {}, dn[10][3];
+    p2_tet(l.data(), gl, n.data(), dn);
+    N_.push_back(n);
+  }
+}
+
+void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
+  for (int i = 0; i < 4; ++i)
+    for (int d = 0; d < 3; ++d)
+      X[i][d] = space_.X[3 * space_.cell_vertex[4 * k + i] + d];
+  g.set(X);
+}
+
+void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
+  const double rho = p_.rho;
+  const bool inertia = !ctx.steady;
+  for (PetscInt k : cells_) {
+    TetGeometry geo;
+    double X[4][3], u[10][3], acc[10][3] = {};
+    reference_geometry(k, geo, X);
+    const PetscInt *vd = &space_.cell_vdof[10 * k];
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i) {
+        u[a][i] = ctx.u_af(vd[a] + i);
+        if (inertia) acc[a][i] = ctx.a_am(vd[a] + i);
+      }
+    double Re[10][3] = {};
+    for (size_t q = 0; q < rule_.weight.size(); ++q) {
+      const double *l = rule_.lambda[q].data();
+      const double *N = N_[q].data();
+      double Nd[10], dN[10][3];
+      p2_tet(l, geo.grad_lambda, Nd, dN);
+      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, a[3] = {}, P[3][3];
+      for (int b = 0; b < 10; ++b)
+        for (int i = 0; i < 3; ++i) {
+          a[i] += N[b] * acc[b][i];
+          for (int J = 0; J < 3; ++J)
+            F[i][J] += u[b][i] * dN[b][J];
+        }
+      material_->stress(F, P);
+      double f[3]; // inertia minus body force, per unit reference volume
+      for (int i = 0; i < 3; ++i)
+        f[i] = rho * (a[i] - p_.gravity[i]);
+      if (exact_) {
+        double x[3] = {0, 0, 0}, b[3];
+        for (int v = 0; v < 4; ++v)
+          for (int d = 0; d < 3; ++d)
+            x[d] += l[v] * X[v][d];
+        exact_->body_force(*material_, rho, x, ctx.t_af, b);
+        for (int i = 0; i < 3; ++i)
+          f[i] -= b[i];
+      }
+      const double w = rule_.weight[q] * geo.absdet;
+      for (int a2 = 0; a2 < 10; ++a2)
+        for (int i = 0; i < 3; ++i)
+          Re[a2][i] +=
+              w * (N[a2] * f[i] + P[i][0] * dN[a2][0] + P[i][1] * dN[a2][1] + P[i][2] * dN[a2][2]);
+    }
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        R[vd[a] + i] += Re[a][i];
+  }
+}
+
+void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
+  const double cm = ctx.mass_shift() * p_.rho, cu = ctx.disp_shift();
+  const std::vector<char> &bc = *ctx.is_dirichlet;
+  constexpr int n = 30;
+  const bool fast = p_.direct_insertion;
+  if (fast && !assembler_.ready()) assembler_.setup(Jmat, space_, dofs_, n, bc);
+  if (fast) assembler_.begin(Jmat);
+  double K[n][n];
+  for (size_t c = 0; c < cells_.size(); ++c) {
+    const PetscInt k = cells_[c];
+    TetGeometry geo;
+    double X[4][3], u[10][3];
+    reference_geometry(k, geo, X);
+    const PetscInt *vd = &space_.cell_vdof[10 * k];
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        u[a][i] = ctx.u_af(vd[a] + i);
+    std::memset(K, 0, sizeof K);
+    for (size_t q = 0; q < rule_.weight.size(); ++q) {
+      const double *l = rule_.lambda[q].data();
+      const double *N = N_[q].data();
+      double Nd[10], dN[10][3];
+      p2_tet(l, geo.grad_lambda, Nd, dN);
+      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P[3][3], A[3][3][3][3];
+      for (int b = 0; b < 10; ++b)
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J)
+            F[i][J] += u[b][i] * dN[b][J];
+      material_->tangent(F, P, A);
+      const double w = rule_.weight[q] * geo.absdet, wm = w * cm, wk = w * cu;
+      for (int b = 0; b < 10; ++b) {
+        // C[i][J][k] = sum_L A_iJkL dN_b,L
+        double C[3][3][3];
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J)
+            for (int kk = 0; kk < 3; ++kk)
+              C[i][J][kk] = wk * (A[i][J][kk][0] * dN[b][0] + A[i][J][kk][1] * dN[b][1] +
+                                  A[i][J][kk][2] * dN[b][2]);
+        for (int a = 0; a < 10; ++a) {
+          const double m = wm * N[a] * N[b];
+          for (int i = 0; i < 3; ++i) {
+            double *row = K[3 * a + i] + 3 * b;
+            row[i] += m;
+            for (int kk = 0; kk < 3; ++kk)
+              row[kk] += dN[a][0] * C[i][0][kk] + dN[a][1] * C[i][1][kk] + dN[a][2] * C[i][2][kk];
+          }
+        }
+      }
+    }
+    if (fast) {
+      assembler_.add(Jmat, c, &K[0][0]);
+      continue;
+    }
+    PetscInt rows[n], cols[n];
+    for (int a = 0; a < n; ++a) {
+      cols[a] = dofs_[n * c + a];
+      rows[a] = bc[cols[a]] ? -1 : cols[a];
+    }
+    FSI_CALL(MatSetValuesLocal(Jmat, n, rows, n, cols, &K[0][0], ADD_VALUES));
+  }
+  if (fast) assembler_.end(Jmat);
+}
+
+SolidEnergy SolidModule::energy(const PetscScalar *V, const PetscScalar *D) const {
+  SolidEnergy e;
+  for (PetscInt k : cells_) { // cells are not shared between ranks (no overlap)
+    TetGeometry geo;
+    double X[4][3];
+    reference_geometry(k, geo, X);
+    const PetscInt *vd = &space_.cell_vdof[10 * k];
+    for (size_t q = 0; q < rule_.weight.size(); ++q) {
+      const double *N = N_[q].data();
+      double Nd[10], dN[10][3];
+      p2_tet(rule_.lambda[q].data(), geo.grad_lambda, Nd, dN);
+      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, v[3] = {};
+      for (int b = 0; b < 10; ++b)
+        for (int i = 0; i < 3; ++i) {
+          v[i] += N[b] * PetscRealPart(V[vd[b] + i]);
+          for (int J = 0; J < 3; ++J)
+            F[i][J] += PetscRealPart(D[vd[b] + i]) * dN[b][J];
+        }
+      const double w = rule_.weight[q] * geo.absdet;
+      e.kinetic += 0.5 * w * p_.rho * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      e.strain += w * material_->energy(F);
+    }
+  }
+  double loc[2] = {e.kinetic, e.strain}, glob[2];
+  MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, comm_);
+  e.kinetic = glob[0];
+  e.strain = glob[1];
+  return e;
+}
+
+} // namespace fsi
