@@ -87,6 +87,45 @@ template <typename S> S mooney_rivlin_energy(const S F[9], double c10, double c0
   return c10 * (I1b + (-3.0)) + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1);
 }
 
+// Its first Piola-Kirchhoff stress in closed form, generic in the scalar (a dual number gives the
+// exact tangent in one forward pass).  With a = J^(-2/3), cof F = J F^-T:
+//   P = 2 c10 a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F.
+template <typename S>
+void mooney_rivlin_stress(const S F[9], double c10, double c01, double kappa, S P[9]) {
+  S cof[9]; // cofactor matrix, row-major: cof_iJ = dJ/dF_iJ
+  cof[0] = F[4] * F[8] - F[5] * F[7];
+  cof[1] = F[5] * F[6] - F[3] * F[8];
+  cof[2] = F[3] * F[7] - F[4] * F[6];
+  cof[3] = F[2] * F[7] - F[1] * F[8];
+  cof[4] = F[0] * F[8] - F[2] * F[6];
+  cof[5] = F[1] * F[6] - F[0] * F[7];
+  cof[6] = F[1] * F[5] - F[2] * F[4];
+  cof[7] = F[2] * F[3] - F[0] * F[5];
+  cof[8] = F[0] * F[4] - F[1] * F[3];
+  S J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
+  if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
+  S C[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      C[3 * i + j] = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
+  S I1 = C[0] + C[4] + C[8];
+  S trC2 = C[0] * C[0];
+  for (int k = 1; k < 9; ++k)
+    trC2 = trC2 + C[k] * C[k];
+  S I2 = 0.5 * (I1 * I1 - trC2);
+  S Jinv = power(J, -1.0), a = power(J, -2.0 / 3.0);
+  S a2 = a * a;
+  S s1 = (2 * c10) * a, s2 = (2 * c01) * a2;
+  // coefficient of cof F: -2/3 c10 a I1 / J - 4/3 c01 a^2 I2 / J + kappa (J - 1)
+  S kc = ((-2.0 / 3.0 * c10) * a * I1 + (-4.0 / 3.0 * c01) * a2 * I2) * Jinv +
+         kappa * (J + (-1.0));
+  for (int i = 0; i < 3; ++i)
+    for (int L = 0; L < 3; ++L) {
+      S FC = F[3 * i] * C[L] + F[3 * i + 1] * C[3 + L] + F[3 * i + 2] * C[6 + L];
+      P[3 * i + L] = s1 * F[3 * i + L] + s2 * (I1 * F[3 * i + L] - FC) + kc * cof[3 * i + L];
+    }
+}
+
 struct SplitLaw : Material {
   std::string kind;
   double c10, c01, kappa;
@@ -97,30 +136,18 @@ struct SplitLaw : Material {
     return mooney_rivlin_energy(&F[0][0], c10, c01, kappa);
   }
   void stress(const double F[3][3], double P[3][3]) const override {
-    using D = Dual<double, 9>;
-    D f[9];
-    for (int m = 0; m < 9; ++m)
-      f[m].v = (&F[0][0])[m], f[m].d[m] = 1;
-    D W = mooney_rivlin_energy(f, c10, c01, kappa);
-    for (int m = 0; m < 9; ++m)
-      (&P[0][0])[m] = W.d[m];
+    mooney_rivlin_stress(&F[0][0], c10, c01, kappa, &P[0][0]);
   }
   void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const override {
-    using D1 = Dual<double, 9>;
-    using D2 = Dual<D1, 1>;
-    for (int k = 0; k < 9; ++k) { // one pass per column of the Hessian
-      D2 f[9];
-      for (int m = 0; m < 9; ++m) {
-        f[m].v.v = (&F[0][0])[m];
-        f[m].v.d[m] = 1;
-        f[m].d[0].v = m == k ? 1 : 0;
-      }
-      D2 W = mooney_rivlin_energy(f, c10, c01, kappa);
-      for (int m = 0; m < 9; ++m)
-        (&A[0][0][0][0])[9 * m + k] = W.d[0].d[m];
-      if (k == 0)
-        for (int m = 0; m < 9; ++m)
-          (&P[0][0])[m] = W.v.d[m];
+    using D = Dual<double, 9>;
+    D f[9], p[9];
+    for (int m = 0; m < 9; ++m)
+      f[m].v = (&F[0][0])[m], f[m].d[m] = 1;
+    mooney_rivlin_stress(f, c10, c01, kappa, p);
+    for (int m = 0; m < 9; ++m) {
+      (&P[0][0])[m] = p[m].v;
+      for (int k = 0; k < 9; ++k)
+        (&A[0][0][0][0])[9 * m + k] = p[m].d[k];
     }
   }
 };
