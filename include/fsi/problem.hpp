@@ -93,6 +93,7 @@ private:
   SNES snes_ = nullptr;
   double t_ = 0;
   long n_ = 0;
+  bool inverted_ = false; // a residual of this step's Newton met an inverted solid element
   std::vector<double> dn_, dnp1_, Xn_, Xaf_, Xnp1_, W_;
   std::vector<std::pair<PetscInt, double>> bc_values_, disp_values_;
   StepContext ctx_;

@@ -320,6 +320,7 @@ StepStats Problem::step() {
   FSI_CALL(VecRestoreArray(U_, &u));
 
   FSI_CALL(PetscLogStagePush(st.solve));
+  inverted_ = false;
   const double ts0 = MPI_Wtime();
   FSI_CALL(SNESSolve(snes_, nullptr, U_));
   cost_.nonlinear_solve_time += MPI_Wtime() - ts0;
@@ -328,13 +329,14 @@ StepStats Problem::step() {
   FSI_CALL(SNESGetIterationNumber(snes_, &s.newton));
   FSI_CALL(SNESGetLinearSolveIterations(snes_, &s.krylov));
   FSI_CALL(SNESGetConvergedReason(snes_, &s.reason));
-  if (s.reason == SNES_DIVERGED_FUNCTION_DOMAIN)
+  if (s.reason < 0 && inverted_)
     throw SolveError("a solid element inverted (det F <= 0) at step " + std::to_string(n_ + 1) +
                      " (t = " + std::to_string(t_np1) +
                      "): the load or time step is too large for this mesh; use more steps");
   if (s.reason < 0)
     throw SolveError(std::string("Newton did not converge at step ") + std::to_string(n_ + 1) +
-                     " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[s.reason]);
+                     " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[s.reason] +
+                     "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
 
   const double dt = tp_.dt;
   if (tp_.steady) {
@@ -429,6 +431,7 @@ bool Problem::residual(Vec U, Vec F) {
   FSI_CALL(PetscLogStagePop());
   int ok = valid, all_ok;
   MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PetscObjectComm((PetscObject)F));
+  if (!all_ok) inverted_ = true;
   return all_ok;
 }
 
