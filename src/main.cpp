@@ -226,6 +226,7 @@ int run(MPI_Comm comm) {
   Json dofs, times, iters, cost, j;
   dofs.set("velocity", (long)space.n_velocity)
       .set("pressure", (long)space.n_pressure)
+      .set("pressure_held_outside_fluid", bcs.pressure_dofs_outside_fluid())
       .set("total", (long)(space.n_velocity + space.n_pressure));
   times.set("total", tot.wall)
       .set("setup", setup_time)

@@ -19,8 +19,16 @@ cases = [
     ("option nobody reads", ["-fluid_viscosity", "0.004"], "fluid_viscosity"),
     ("output directory not writable", ["-out_dir", "/proc/fsi_results"], "output directory"),
 ]
-for name, extra, needle in cases:
-    r = run(scene("poiseuille"), extra=extra)
+solid_cases = [
+    ("negative solid density", ["-solid_rho", "-1000"], "solid_rho"),
+    ("incompressible linear solid", ["-solid_material", "svk", "-solid_E", "1e4", "-solid_nu", "0.5"], "solid_nu"),
+    ("unknown material", ["-solid_material", "ogden"], "ogden"),
+    ("Mooney-Rivlin without kappa", ["-solid_kappa", "-5"], "solid_kappa"),
+    ("mesh without the solid region", ["-solid_region", "tissue"], "tissue"),
+    ("unknown solid boundary type", ["-bc_zmax_type", "pinned"], "pinned"),
+]
+for name, extra, needle, sc in [c + ("poiseuille",) for c in cases] + [c + ("mr_uniaxial",) for c in solid_cases]:
+    r = run(scene(sc), extra=extra)
     lines = [l for l in r.out.splitlines() if "fsi_app: error:" in l]
     check(r.code != 0, f"{name}: non-zero exit ({r.code})")
     check(len(lines) == 1 and needle in lines[0], f"{name}: one error line naming '{needle}'")

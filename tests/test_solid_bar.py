@@ -18,6 +18,10 @@ def nominal(lam):
 
 r = run(scene("mr_uniaxial"))
 check(r.code == 0, "uniaxial bar: run succeeds")
+s = r.summary
+check(s["physics"] == ["solid (mooney_rivlin)"] and s["fluid_cells"] == 0 and
+      s["dofs"]["pressure_held_outside_fluid"] == s["dofs"]["pressure"],
+      f"solid-only scene: physics {s['physics']}, no fluid cells, every pressure dof held (not assembled)")
 worst, worst_j, lam_max = 0.0, 0.0, 1.0
 for row in r.monitor:
     lam = 1 + row["solid_probe0_uz"] / L

@@ -79,6 +79,8 @@ public:
   // Backflow and follower-pressure terms (the other loads do not depend on the unknown).
   void add_traction_jacobian(const StepContext &ctx, Mat J) const;
   bool pressure_pinned() const { return pin_dof_ >= 0 || pinned_; }
+  // Global number of pressure dofs held at zero because no fluid cell touches them.
+  long pressure_dofs_outside_fluid() const;
   const std::vector<BoundaryCondition> &list() const { return bcs_; }
 
 private:

@@ -129,6 +129,14 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
   }
 }
 
+long Boundaries::pressure_dofs_outside_fluid() const {
+  long mine = 0, all = 0;
+  for (PetscInt i : outside_fluid_)
+    mine += space_->owned(i);
+  MPI_Allreduce(&mine, &all, 1, MPI_LONG, MPI_SUM, PetscObjectComm((PetscObject)space_->dm));
+  return all;
+}
+
 void Boundaries::displacement_values(double t,
                                      std::vector<std::pair<PetscInt, double>> &out) const {
   out.clear();

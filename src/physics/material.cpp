@@ -117,8 +117,7 @@ void mooney_rivlin_stress(const S F[9], double c10, double c01, double kappa, S 
   S a2 = a * a;
   S s1 = (2 * c10) * a, s2 = (2 * c01) * a2;
   // coefficient of cof F: -2/3 c10 a I1 / J - 4/3 c01 a^2 I2 / J + kappa (J - 1)
-  S kc = ((-2.0 / 3.0 * c10) * a * I1 + (-4.0 / 3.0 * c01) * a2 * I2) * Jinv +
-         kappa * (J + (-1.0));
+  S kc = ((-2.0 / 3.0 * c10) * a * I1 + (-4.0 / 3.0 * c01) * a2 * I2) * Jinv + kappa * (J + (-1.0));
   for (int i = 0; i < 3; ++i)
     for (int L = 0; L < 3; ++L) {
       S FC = F[3 * i] * C[L] + F[3 * i + 1] * C[3 + L] + F[3 * i + 2] * C[6 + L];
