@@ -127,6 +127,7 @@ int run(MPI_Comm comm) {
   bcs.setup(mesh, space, exact.get(), exact_solid.get(), fluid ? fluid->params().mu : 0.0,
             fluid ? fluid->params().rho : 0.0, fluid ? &fluid->cells() : nullptr);
   pb.set_boundaries(&bcs);
+  pb.set_rigid_body_modes(solid != nullptr);
   pb.setup_solver();
   Monitors mon;
   mon.setup(mesh, space, fluid, exact.get());

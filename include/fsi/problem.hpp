@@ -43,6 +43,8 @@ public:
   void set_boundaries(Boundaries *b) { bcs_ = b; }
   void set_mesh_motion(std::unique_ptr<MeshMotion> m) { motion_ = std::move(m); }
   void set_exact(const ExactFlow *e) { exact_ = e; }
+  // With a field split, give the velocity block the rigid-body modes as near null space.
+  void set_rigid_body_modes(bool on) { rigid_modes_ = on; }
   void setup_solver(); // after modules and boundaries
 
   // Initial state at t = 0: rest, or the exact flow (-ic rest|exact).
@@ -93,7 +95,8 @@ private:
   SNES snes_ = nullptr;
   double t_ = 0;
   long n_ = 0;
-  bool inverted_ = false; // a residual of this step's Newton met an inverted solid element
+  bool inverted_ = false;
+  bool rigid_modes_ = false; // a residual of this step's Newton met an inverted solid element
   std::vector<double> dn_, dnp1_, Xn_, Xaf_, Xnp1_, W_;
   std::vector<std::pair<PetscInt, double>> bc_values_, disp_values_;
   StepContext ctx_;

@@ -42,6 +42,7 @@ struct Space {
   std::vector<PetscInt> local_to_global;   // per local dof, global index
   ISLocalToGlobalMapping l2g = nullptr;    // the same, for MatSetValuesLocal
   IS is_velocity = nullptr, is_pressure = nullptr;
+  std::vector<double> velocity_node_X; // 3 per owned velocity node, in is_velocity order
   // Our own global <-> local scatter built from local_to_global (the DM's section SF is not used).
   VecScatter g2l = nullptr;
   Vec create_global() const;

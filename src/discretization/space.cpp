@@ -201,7 +201,7 @@ void Space::build(const Mesh &mesh) {
   }
 
   // Field index sets over owned dofs.
-  std::vector<PetscInt> iv, ip;
+  std::vector<PetscInt> iv, ip, vnode_points;
   for (PetscInt p = pStart; p < pEnd; ++p) {
     PetscInt dof;
     FSI_CALL(PetscSectionGetDof(ls, p, &dof));
@@ -210,6 +210,7 @@ void Space::build(const Mesh &mesh) {
     FSI_CALL(PetscSectionGetFieldOffset(ls, p, 0, &fo));
     for (int c = 0; c < 3; ++c)
       iv.push_back(local_to_global[fo + c]);
+    vnode_points.push_back(p);
     if (p >= vStart && p < vEnd) {
       FSI_CALL(PetscSectionGetFieldOffset(ls, p, 1, &fo));
       ip.push_back(local_to_global[fo]);
@@ -236,6 +237,20 @@ void Space::build(const Mesh &mesh) {
       X[3 * (v - vStart) + d] = PetscRealPart(ca[off + d]);
   }
   FSI_CALL(VecRestoreArrayRead(coords, &ca));
+  // Positions of the owned velocity nodes in is_velocity order (vertex or edge midpoint).
+  velocity_node_X.reserve(3 * vnode_points.size());
+  for (PetscInt p : vnode_points) {
+    if (p >= vStart && p < vEnd) {
+      for (int d = 0; d < 3; ++d)
+        velocity_node_X.push_back(X[3 * (p - vStart) + d]);
+      continue;
+    }
+    const PetscInt *cone;
+    FSI_CALL(DMPlexGetCone(dm, p, &cone));
+    for (int d = 0; d < 3; ++d)
+      velocity_node_X.push_back(
+          0.5 * (X[3 * (cone[0] - vStart) + d] + X[3 * (cone[1] - vStart) + d]));
+  }
 
   check_numbering();
 
