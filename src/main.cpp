@@ -122,7 +122,8 @@ int run(MPI_Comm comm) {
     pb.add_module(std::move(s));
   }
   pb.set_exact(exact.get());
-  pb.set_mesh_motion(make_mesh_motion(space));
+  pb.set_mesh_motion(make_mesh_motion(mesh, space, fluid ? &fluid->cells() : nullptr),
+                     fluid ? &fluid->cells() : nullptr);
   Boundaries bcs;
   bcs.setup(mesh, space, exact.get(), exact_solid.get(), fluid ? fluid->params().mu : 0.0,
             fluid ? fluid->params().rho : 0.0, fluid ? &fluid->cells() : nullptr);
@@ -149,6 +150,9 @@ int run(MPI_Comm comm) {
   out.write_options();
   auto columns = mon.columns(), solid_columns = smon.columns();
   columns.insert(columns.end(), solid_columns.begin(), solid_columns.end());
+  if (pb.mesh_motion())
+    for (auto c : {"mesh_min_jacobian", "mesh_max_skewness", "geometry_iterations"})
+      columns.push_back(c);
   out.open_monitor(columns);
   std::unique_ptr<FieldWriter> fields;
   FieldSet field_set;
@@ -183,6 +187,9 @@ int run(MPI_Comm comm) {
       auto m = mon.evaluate(pb), sm = smon.evaluate(pb);
       row.insert(row.end(), m.begin(), m.end());
       row.insert(row.end(), sm.begin(), sm.end());
+      if (pb.mesh_motion())
+        row.insert(row.end(), {pb.mesh_quality_last().min_jacobian,
+                               pb.mesh_quality_last().max_skewness, (double)s.geometry_iterations});
       out.monitor_row(row);
       if (fields && pb.step_index() % fields_every == 0) {
         Vec loc = space.create_local(), dloc = space.create_local();
@@ -234,6 +241,7 @@ int run(MPI_Comm comm) {
       .set("jacobian_assembly", jt_max)
       .set("residual_assembly", rt_max)
       .set("linear_solver", ls_max)
+      .set("mesh_motion", c.mesh_motion_time)
       .set("output", output_time)
       .set("per_step", tot.steps ? (tot.wall - setup_time) / tot.steps : 0.0);
   iters.set("newton_total", tot.newton)

@@ -3,6 +3,7 @@
 //                           force on the surface by the fluid F = -int sigma n dA [N],
 //                           mean pressure [Pa], all on the current (deformed) configuration;
 //   -probe_points x,y,z;... velocity and pressure at points of the reference mesh;
+//   -monitor_fluid_volume   the fluid's volume on the current mesh [m^3];
 //   with -exact_solution: L2 errors of velocity (at t_{n+1}) and pressure (at t_{n+alpha_f}, where
 //   the generalized-alpha pressure lives; up to its mean where the flow does not fix the level)
 //   and, at probes, the exact velocity.
@@ -44,6 +45,7 @@ private:
   std::vector<std::vector<BoundaryFace>> surf_faces_;
   std::vector<Probe> probes_;
   ErrorNorms err_;
+  bool volume_ = false;
   MPI_Comm comm_ = MPI_COMM_NULL;
 };
 

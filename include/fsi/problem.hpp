@@ -27,12 +27,14 @@ struct TimeParams {
 
 struct StepStats {
   PetscInt newton = 0, krylov = 0;
+  int geometry_iterations = 0; // extra solves on an updated mesh (geometry implicit)
+  double geometry_change = 0;  // last relative mesh change
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
 };
 
 struct CostCounters {
   long residuals = 0, jacobians = 0;
-  double residual_time = 0, jacobian_time = 0, nonlinear_solve_time = 0;
+  double residual_time = 0, jacobian_time = 0, nonlinear_solve_time = 0, mesh_motion_time = 0;
 };
 
 class Problem {
@@ -41,7 +43,12 @@ public:
   ~Problem();
   void add_module(std::unique_ptr<PhysicsModule> m) { modules_.push_back(std::move(m)); }
   void set_boundaries(Boundaries *b) { bcs_ = b; }
-  void set_mesh_motion(std::unique_ptr<MeshMotion> m) { motion_ = std::move(m); }
+  // Mesh motion (may be null) and the fluid cells whose quality is checked each step:
+  // -ale_min_jacobian (default 0) and -ale_max_skewness (default 0.99) stop the run;
+  // -ale_geometry_iterations N (default 0: geometry lagged, as the paper) re-solves the step on
+  // the mesh moved by the new solid displacement until it changes by < -ale_geometry_rtol.
+  void set_mesh_motion(std::unique_ptr<MeshMotion> m, const std::vector<PetscInt> *fluid_cells);
+  const MeshQuality &mesh_quality_last() const { return quality_; }
   void set_exact(const ExactFlow *e) { exact_ = e; }
   // With a field split, give the velocity block the rigid-body modes as near null space.
   void set_rigid_body_modes(bool on) { rigid_modes_ = on; }
@@ -81,6 +88,10 @@ private:
   void mesh_at(double t, std::vector<double> &disp) const;
   void set_context(double t_np1);
   void displacement_to_velocity_values(double t_np1);
+  void displacement_np1_local(Vec U, Vec loc);
+  void set_geometry(const std::vector<double> &dnp1);
+  void move_mesh(double t_np1, Vec U, std::vector<double> &d);
+  void check_mesh(const char *when, long step);
   const Space &space_;
   TimeParams tp_;
   double alpha_m_ = 1, alpha_f_ = 1, gamma_ = 1, beta_ = 0.25;
@@ -90,7 +101,12 @@ private:
   const ExactFlow *exact_ = nullptr;
 
   Vec U_ = nullptr, Vn_ = nullptr, An_ = nullptr, F_ = nullptr, Dn_ = nullptr, work_ = nullptr;
-  Vec Uloc_ = nullptr, Vloc_ = nullptr, Aloc_ = nullptr, Floc_ = nullptr, Dloc_ = nullptr;
+  Vec Uloc_ = nullptr, Vloc_ = nullptr, Aloc_ = nullptr, Floc_ = nullptr, Dloc_ = nullptr,
+      Sloc_ = nullptr;
+  const std::vector<PetscInt> *fluid_cells_ = nullptr;
+  MeshQuality quality_;
+  int geometry_iterations_ = 0;
+  double geometry_rtol_ = 1e-6, min_jacobian_ = 0, max_skewness_ = 0.99;
   Mat J_ = nullptr;
   SNES snes_ = nullptr;
   double t_ = 0;

@@ -59,8 +59,11 @@ struct Space {
     PetscInt g = local_to_global[local_dof];
     return g >= rstart && g < rstart + n_owned;
   }
-  // Faces of boundary `name` (label from the mesh, faces with one supporting cell).
-  std::vector<BoundaryFace> boundary_faces(const Mesh &mesh, const std::string &name) const;
+  // Faces of boundary `name` (label from the mesh).  With `region` (a mask over local cells) a
+  // face is taken from the side of a region cell, and skipped where no such cell supports it:
+  // pass the fluid's cells for a fluid-solid interface.
+  std::vector<BoundaryFace> boundary_faces(const Mesh &mesh, const std::string &name,
+                                           const std::vector<char> *region = nullptr) const;
   // Velocity nodes (vertices and edges) in the closure of boundary `name`, consistent across
   // ranks: a node shared with a rank that lacks the face is listed there too.
   std::vector<DofNode> boundary_velocity_nodes(const Mesh &mesh, const std::string &name) const;

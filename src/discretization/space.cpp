@@ -248,8 +248,8 @@ void Space::build(const Mesh &mesh) {
     const PetscInt *cone;
     FSI_CALL(DMPlexGetCone(dm, p, &cone));
     for (int d = 0; d < 3; ++d)
-      velocity_node_X.push_back(
-          0.5 * (X[3 * (cone[0] - vStart) + d] + X[3 * (cone[1] - vStart) + d]));
+      velocity_node_X.push_back(0.5 *
+                                (X[3 * (cone[0] - vStart) + d] + X[3 * (cone[1] - vStart) + d]));
   }
 
   check_numbering();
@@ -299,7 +299,8 @@ void Space::build(const Mesh &mesh) {
   }
 }
 
-std::vector<BoundaryFace> Space::boundary_faces(const Mesh &mesh, const std::string &name) const {
+std::vector<BoundaryFace> Space::boundary_faces(const Mesh &mesh, const std::string &name,
+                                                const std::vector<char> *region) const {
   DMLabel l = mesh.label(name);
   PetscSection ls;
   FSI_CALL(DMGetLocalSection(dm, &ls));
@@ -315,10 +316,17 @@ std::vector<BoundaryFace> Space::boundary_faces(const Mesh &mesh, const std::str
     FSI_CALL(DMPlexGetSupportSize(dm, f, &ns));
     FSI_CALL(DMPlexGetSupport(dm, f, &supp));
     if (ns < 1) continue;
-    // Interfaces between two cells are not boundaries of the whole mesh; the caller decides by
-    // region (later: fluid side only).  Here we take the first supporting cell.
+    // On an interface between regions the face belongs to the side in `region` (a face on a
+    // partition boundary is seen by both ranks, each with its own cell).
+    PetscInt cell = -1;
+    for (PetscInt i = 0; i < ns; ++i)
+      if (!region || (*region)[supp[i] - cStart]) {
+        cell = supp[i] - cStart;
+        break;
+      }
+    if (cell < 0) continue;
     BoundaryFace bf;
-    bf.cell = supp[0] - cStart;
+    bf.cell = cell;
     PetscInt ncl, *cl = nullptr;
     FSI_CALL(DMPlexGetTransitiveClosure(dm, f, PETSC_TRUE, &ncl, &cl));
     int nv = 0, ne = 0;

@@ -16,9 +16,15 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
   if (!surf_names_.empty() && !fluid)
     throw InputError("-monitor_surfaces needs a fluid in the scene");
   mesh.require_groups(surf_names_, "-monitor_surfaces");
+  std::vector<char> in_fluid(space.n_cells(), 0);
+  if (fluid)
+    for (PetscInt k : fluid->cells())
+      in_fluid[k] = 1;
   for (auto &n : surf_names_)
-    surf_faces_.push_back(space.boundary_faces(mesh, n));
+    surf_faces_.push_back(space.boundary_faces(mesh, n, &in_fluid));
 
+  volume_ = opt::flag("monitor_fluid_volume", false);
+  if (volume_ && !fluid) throw InputError("-monitor_fluid_volume needs a fluid in the scene");
   for (auto &x : parse_points("probe_points")) {
     if (!fluid) throw InputError("-probe_points needs a fluid (solid points: -solid_probe_points)");
     PointLocation loc = locate_point(space, fluid->cells(), x.data());
@@ -52,6 +58,7 @@ std::vector<std::string> Monitors::columns() const {
   if (exact_)
     for (auto q : {"err_v_l2", "err_p_l2", "err_v_rel", "err_p_rel"})
       c.push_back(q);
+  if (volume_) c.push_back("fluid_volume");
   return c;
 }
 
@@ -205,6 +212,20 @@ std::vector<double> Monitors::evaluate(const Problem &pb) {
     err_ = errors(u, Xc, t, pb.coordinates_af(), pb.time_af());
     out.insert(out.end(), {err_.v_l2, err_.p_l2, err_.v_l2 / std::max(err_.v_norm, 1e-300),
                            err_.p_l2 / std::max(err_.p_norm, 1e-300)});
+  }
+  if (volume_) {
+    double vol = 0, gvol;
+    for (PetscInt k : fluid_->cells()) {
+      double X[4][3];
+      for (int i = 0; i < 4; ++i)
+        for (int d = 0; d < 3; ++d)
+          X[i][d] = Xc[3 * space_->cell_vertex[4 * k + i] + d];
+      TetGeometry g;
+      g.set(X);
+      vol += g.absdet / 6;
+    }
+    MPI_Allreduce(&vol, &gvol, 1, MPI_DOUBLE, MPI_SUM, comm_);
+    out.push_back(gvol);
   }
   FSI_CALL(VecRestoreArrayRead(loc, &u));
   FSI_CALL(VecDestroy(&loc));

@@ -84,6 +84,7 @@ Problem::Problem(const Space &space, const TimeParams &tp) : space_(space), tp_(
   FSI_CALL(VecDuplicate(U_, &Dn_));
   FSI_CALL(VecDuplicate(U_, &work_));
   Uloc_ = space.create_local();
+  FSI_CALL(VecDuplicate(Uloc_, &Sloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Dloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Vloc_));
   FSI_CALL(VecDuplicate(Uloc_, &Aloc_));
@@ -127,7 +128,7 @@ void Problem::create_matrix() {
 }
 
 Problem::~Problem() {
-  Vec *vs[] = {&U_, &Vn_, &An_, &F_, &Dn_, &work_, &Uloc_, &Dloc_, &Vloc_, &Aloc_, &Floc_};
+  Vec *vs[] = {&U_, &Vn_, &An_, &F_, &Dn_, &work_, &Uloc_, &Dloc_, &Sloc_, &Vloc_, &Aloc_, &Floc_};
   for (auto v : vs)
     if (*v) VecDestroy(v);
   if (J_) MatDestroy(&J_);
@@ -152,12 +153,12 @@ void Problem::setup_solver() {
       // The six rigid-body modes as the velocity block's near null space (the solid's
       // elasticity operator): algebraic multigrid (GAMG) builds its coarse spaces from them.
       Vec xyz;
-      FSI_CALL(VecCreateMPIWithArray(comm, 3, (PetscInt)space_.velocity_node_X.size(),
-                                     PETSC_DECIDE, space_.velocity_node_X.data(), &xyz));
+      FSI_CALL(VecCreateMPIWithArray(comm, 3, (PetscInt)space_.velocity_node_X.size(), PETSC_DECIDE,
+                                     space_.velocity_node_X.data(), &xyz));
       MatNullSpace ns;
       FSI_CALL(MatNullSpaceCreateRigidBody(xyz, &ns));
-      FSI_CALL(PetscObjectCompose((PetscObject)space_.is_velocity, "nearnullspace",
-                                  (PetscObject)ns));
+      FSI_CALL(
+          PetscObjectCompose((PetscObject)space_.is_velocity, "nearnullspace", (PetscObject)ns));
       FSI_CALL(MatNullSpaceDestroy(&ns));
       FSI_CALL(VecDestroy(&xyz));
     }
@@ -167,10 +168,19 @@ void Problem::setup_solver() {
 }
 
 void Problem::mesh_at(double t, std::vector<double> &disp) const {
-  if (motion_)
-    motion_->displacement(t, disp);
+  if (motion_ && !motion_->follows_solid()) // the solid is at rest at t = 0
+    motion_->displacement(t, nullptr, disp);
   else
     disp.assign(3 * space_.n_vertices(), 0.0);
+}
+
+void Problem::set_mesh_motion(std::unique_ptr<MeshMotion> m, const std::vector<PetscInt> *fluid) {
+  motion_ = std::move(m);
+  fluid_cells_ = fluid;
+  geometry_iterations_ = (int)opt::integer("ale_geometry_iterations", 0);
+  geometry_rtol_ = opt::positive("ale_geometry_rtol", 1e-6);
+  min_jacobian_ = opt::real("ale_min_jacobian", 0.0);
+  max_skewness_ = opt::positive("ale_max_skewness", 0.99);
 }
 
 void Problem::solution_local(Vec &loc) const {
@@ -300,12 +310,25 @@ void Problem::set_context(double t_np1) {
   ctx_.is_dirichlet = &bcs_->dirichlet_mask();
 }
 
-StepStats Problem::step() {
-  Stages &st = Stages::get();
-  const double t_np1 = t_ + tp_.dt;
-  // Mesh configuration: at n+1, at n+alpha_f, and the mesh velocity.
-  FSI_CALL(PetscLogStagePush(st.mesh_motion));
-  mesh_at(t_np1, dnp1_);
+// Solid displacement at t_{n+1} for the velocity U (all velocity dofs), as a local array.
+void Problem::displacement_np1_local(Vec U, Vec loc) {
+  const double dt = tp_.dt;
+  FSI_CALL(VecCopy(Dn_, work_));
+  if (tp_.steady) {
+    FSI_CALL(VecAXPY(work_, dt, U));
+  } else {
+    // u_n + dt v_n + dt^2 [(1/2 - beta) a_n + beta a_{n+1}(U)]
+    const double g = gamma_;
+    FSI_CALL(VecAXPY(work_, dt, Vn_));
+    FSI_CALL(VecAXPY(work_, dt * dt * ((0.5 - beta_) - beta_ * (1 - g) / g), An_));
+    FSI_CALL(VecAXPY(work_, dt * beta_ / g, U));
+    FSI_CALL(VecAXPY(work_, -dt * beta_ / g, Vn_));
+  }
+  space_.to_local(work_, loc);
+}
+
+void Problem::set_geometry(const std::vector<double> &dnp1) {
+  dnp1_ = dnp1;
   const size_t nd = dnp1_.size();
   Xaf_.resize(nd);
   W_.resize(nd);
@@ -316,14 +339,63 @@ StepStats Problem::step() {
     W_[i] = tp_.steady ? 0.0 : (dnp1_[i] - dn_[i]) / tp_.dt;
     Xnp1_[i] = space_.X[i] + dnp1_[i];
   }
-  FSI_CALL(PetscLogStagePop());
-  set_context(t_np1);
+}
 
-  // History in local form, predictor U = V_n, then Dirichlet data at t_{n+1}.
+// Mesh displacement at t_{n+1} for the velocity iterate U (the solid displacement it implies).
+void Problem::move_mesh(double t_np1, Vec U, std::vector<double> &d) {
+  Stages &st = Stages::get();
+  FSI_CALL(PetscLogStagePush(st.mesh_motion));
+  const double t0 = MPI_Wtime();
+  if (motion_->follows_solid()) {
+    displacement_np1_local(U, Sloc_);
+    const PetscScalar *sa;
+    FSI_CALL(VecGetArrayRead(Sloc_, &sa));
+    motion_->displacement(t_np1, sa, d);
+    FSI_CALL(VecRestoreArrayRead(Sloc_, &sa));
+  } else {
+    motion_->displacement(t_np1, nullptr, d);
+  }
+  cost_.mesh_motion_time += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+}
+
+void Problem::check_mesh(const char *when, long step) {
+  if (!motion_ || !fluid_cells_) return;
+  quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_);
+  if (quality_.min_jacobian <= min_jacobian_ || quality_.max_skewness >= max_skewness_) {
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "fluid mesh too distorted %s step %ld: smallest volume ratio %.3g (limit "
+                  "-ale_min_jacobian %.3g), worst skewness %.3f (limit -ale_max_skewness %.3f); "
+                  "remeshing is not available yet: refine the mesh, stiffen the motion "
+                  "(-ale_stiffening 1) or reduce the load",
+                  when, step, quality_.min_jacobian, min_jacobian_, quality_.max_skewness,
+                  max_skewness_);
+    throw SolveError(msg);
+  }
+}
+
+StepStats Problem::step() {
+  Stages &st = Stages::get();
+  const double t_np1 = t_ + tp_.dt;
+
+  // History in local form, predictor U = V_n.
   space_.to_local(Vn_, Vloc_);
   space_.to_local(An_, Aloc_);
   space_.to_local(Dn_, Dloc_);
   FSI_CALL(VecCopy(Vn_, U_));
+  // Mesh configuration at n+1 (from the predicted solid displacement), at n+alpha_f, and the
+  // mesh velocity; a cell that would invert stops the run before the solve.
+  std::vector<double> d;
+  if (motion_)
+    move_mesh(t_np1, U_, d);
+  else
+    d.assign(3 * space_.n_vertices(), 0.0);
+  set_geometry(d);
+  check_mesh("before", n_ + 1);
+  set_context(t_np1);
+
+  // Dirichlet data at t_{n+1}.
   bcs_->dirichlet_values(t_np1, Xnp1_.data(), bc_values_);
   displacement_to_velocity_values(t_np1);
   PetscScalar *u;
@@ -332,16 +404,40 @@ StepStats Problem::step() {
     if (space_.owned(dof)) u[space_.local_to_global[dof] - space_.rstart] = val;
   FSI_CALL(VecRestoreArray(U_, &u));
 
-  FSI_CALL(PetscLogStagePush(st.solve));
-  inverted_ = false;
-  const double ts0 = MPI_Wtime();
-  FSI_CALL(SNESSolve(snes_, nullptr, U_));
-  cost_.nonlinear_solve_time += MPI_Wtime() - ts0;
-  FSI_CALL(PetscLogStagePop());
   StepStats s;
-  FSI_CALL(SNESGetIterationNumber(snes_, &s.newton));
-  FSI_CALL(SNESGetLinearSolveIterations(snes_, &s.krylov));
-  FSI_CALL(SNESGetConvergedReason(snes_, &s.reason));
+  for (int pass = 0;; ++pass) {
+    FSI_CALL(PetscLogStagePush(st.solve));
+    inverted_ = false;
+    const double ts0 = MPI_Wtime();
+    FSI_CALL(SNESSolve(snes_, nullptr, U_));
+    cost_.nonlinear_solve_time += MPI_Wtime() - ts0;
+    FSI_CALL(PetscLogStagePop());
+    PetscInt it, kit;
+    FSI_CALL(SNESGetIterationNumber(snes_, &it));
+    FSI_CALL(SNESGetLinearSolveIterations(snes_, &kit));
+    FSI_CALL(SNESGetConvergedReason(snes_, &s.reason));
+    s.newton += it;
+    s.krylov += kit;
+    if (s.reason < 0 || !motion_ || !motion_->follows_solid() || pass >= geometry_iterations_)
+      break;
+    // Geometry implicit: move the mesh with the solid displacement just found and solve again
+    // until the mesh stops changing.
+    std::vector<double> d2;
+    move_mesh(t_np1, U_, d2);
+    double change = 0, size = 0;
+    for (size_t i = 0; i < d2.size(); ++i) {
+      change = std::max(change, std::fabs(d2[i] - dnp1_[i]));
+      size = std::max(size, std::fabs(d2[i]));
+    }
+    double loc[2] = {change, size}, glob[2];
+    MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_MAX, PetscObjectComm((PetscObject)space_.dm));
+    s.geometry_iterations = pass + 1;
+    s.geometry_change = glob[1] > 0 ? glob[0] / glob[1] : 0.0;
+    if (s.geometry_change <= geometry_rtol_) break;
+    set_geometry(d2);
+    check_mesh("during", n_ + 1);
+    set_context(t_np1);
+  }
   if (s.reason < 0 && inverted_)
     throw SolveError("a solid element inverted (det F <= 0) at step " + std::to_string(n_ + 1) +
                      " (t = " + std::to_string(t_np1) +
@@ -350,7 +446,6 @@ StepStats Problem::step() {
     throw SolveError(std::string("Newton did not converge at step ") + std::to_string(n_ + 1) +
                      " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[s.reason] +
                      "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
-
   const double dt = tp_.dt;
   if (tp_.steady) {
     FSI_CALL(VecAXPY(Dn_, dt, U_)); // u_{n+1} = u_n + dt v
