@@ -88,7 +88,8 @@ int run(MPI_Comm comm) {
     else if (p == "solid")
       want_solid = true;
     else if (p == "ale")
-      throw InputError("-physics ale is not available yet in this build: use fluid and/or solid");
+      throw InputError("-physics ale is not a physics: the mesh motion is chosen by -ale_motion "
+                       "none|prescribed|laplace");
     else
       throw InputError("-physics has unknown value '" + p + "'; use: fluid, solid");
   }

@@ -18,6 +18,8 @@ cases = [
     ("unknown physics", ["-physics", "fluid,magnetism"], "magnetism"),
     ("option nobody reads", ["-fluid_viscosity", "0.004"], "fluid_viscosity"),
     ("output directory not writable", ["-out_dir", "/proc/fsi_results"], "output directory"),
+    ("mesh slip on a curved wall", ["-ale_motion", "laplace", "-ale_slip_boundaries", "wall"], "axis-aligned plane"),
+    ("unknown mesh motion", ["-ale_motion", "elastic"], "elastic"),
 ]
 solid_cases = [
     ("negative solid density", ["-solid_rho", "-1000"], "solid_rho"),
