@@ -1,13 +1,15 @@
 // Solid constitutive laws in total-Lagrangian form (paper eq. 6): first Piola-Kirchhoff stress
-// P(F) and its exact consistent tangent A_iJkL = dP_iJ / dF_kL.  -solid_material selects:
-//   linear          small-strain Hooke, P = lambda tr(eps) I + 2 mu eps   (-solid_E, -solid_nu)
-//   svk             St Venant-Kirchhoff, S = lambda tr(E) I + 2 mu E, P = F S   (-solid_E,
-//   -solid_nu) neo_hookean     W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2   (-solid_mu, -solid_kappa,
-//   or E, nu) mooney_rivlin   W = C10 (I1bar - 3) + C01 (I2bar - 3) + kappa/2 (J - 1)^2
-//                   (-solid_C10, -solid_C01, -solid_kappa)  [Pa]
-// The split laws are written once as W(F); P and A come from forward-mode automatic
-// differentiation of that one expression, so stress and tangent cannot disagree.  A cell with
-// J <= 0 raises SolveError (inverted element) instead of producing NaN.
+// P(F) and its exact consistent tangent A_iJkL = dP_iJ / dF_kL.  -solid_material selects
+// (moduli in Pa):
+//   linear         small-strain Hooke, P = lambda tr(eps) I + 2 mu eps     (-solid_E, -solid_nu)
+//   svk            St Venant-Kirchhoff, S = lambda tr(E) I + 2 mu E, P = F S (-solid_E, -solid_nu)
+//   neo_hookean    W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2   (-solid_mu, -solid_kappa, or E, nu)
+//   mooney_rivlin  W = C10 (I1bar - 3) + C01 (I2bar - 3) + kappa/2 (J - 1)^2
+//                  (-solid_C10, -solid_C01, -solid_kappa)
+// For the split laws W(F) gives the energy, P is its closed-form derivative, and the tangent is
+// one forward-mode dual-number pass through that same P code; the unit test checks P against
+// finite differences of W and A against finite differences of P.  A cell with J <= 0 raises
+// SolveError (inverted element) instead of producing NaN.
 #pragma once
 #include <memory>
 #include <string>
