@@ -1,9 +1,10 @@
 """Tube (coarse mesh, 10 steps unless stated): the monolithic solution is the same on 1 and 2
 ranks (to 1e-8 of the physical scales: inlet pressure 1333.2 Pa, displacement 0.1 mm, peak
 inflow) and with the direct and the field-split presets (to 1e-6, the Krylov tolerance); one
-Newton iteration per step (fieldsplit_ilu_one_newton) stays within 1e-3 (its linearisation error; measured 1.1e-4 in the start transient) of converged Newton; the
-added-mass stress test: solid density 100 and 10 kg/m^3 (rho_s / rho_f = 0.1, 0.01, where
-partitioned schemes fail) converges in Newton at dt = 1e-4 s for 40 steps and stays bounded."""
+Newton iteration per step (fieldsplit_ilu_one_newton) stays within 1e-3 of converged Newton (its
+linearisation error; measured 1.1e-4, in the start transient); the added-mass stress test: solid
+density 100 and 10 kg/m^3 (rho_s / rho_f = 0.1, 0.01, where partitioned schemes fail) converges
+in Newton at dt = 1e-4 s for 40 steps and stays bounded."""
 import os
 from fsitest import SRC, check, finish, run
 
