@@ -7,6 +7,7 @@
 #include "fsi/boundary.hpp"
 #include "fsi/field_writer.hpp"
 #include "fsi/fluid.hpp"
+#include "fsi/interface_flux.hpp"
 #include "fsi/mesh.hpp"
 #include "fsi/monitors.hpp"
 #include "fsi/options.hpp"
@@ -125,6 +126,12 @@ int run(MPI_Comm comm) {
   pb.set_exact(exact.get());
   pb.set_mesh_motion(make_mesh_motion(mesh, space, fluid ? &fluid->cells() : nullptr),
                      fluid ? &fluid->cells() : nullptr);
+  const std::string iface = opt::string("ale_interface", "");
+  if (!iface.empty()) {
+    if (!fluid || !pb.mesh_motion())
+      throw InputError("-ale_interface needs a fluid and a mesh motion (-ale_motion laplace)");
+    pb.add_module(std::make_unique<InterfaceMassFlux>(space, mesh, iface, fluid->cells()));
+  }
   Boundaries bcs;
   bcs.setup(mesh, space, exact.get(), exact_solid.get(), fluid ? fluid->params().mu : 0.0,
             fluid ? fluid->params().rho : 0.0, fluid ? &fluid->cells() : nullptr);

@@ -45,6 +45,15 @@ check(ro.code == 0, "fieldsplit_ilu_one_newton run succeeds")
 if ro.code == 0 and rd.code == 0:
     d, col = compare(rd.monitor, ro.monitor)
     check(d < 1e-3, f"one Newton iteration per step vs converged Newton: {d:.1e} of the physical scale (< 1e-3, worst: {col})")
+rs = run(TUBE, np=2, extra=COARSE + ["-ale_stiffening", "1"], presets=("fieldsplit_ilu",))
+check(rs.code == 0, "Jacobian-stiffened mesh motion (-ale_stiffening 1): 10 steps run")
+if rs.code == 0 and rf.code == 0:
+    d, col = compare(rf.monitor, rs.monitor)
+    print(f"stiffened vs plain Laplace mesh motion: {d:.1e} of the physical scale ({col})")
+    check(d < 1e-2, "stiffened mesh motion changes the answer by < 1 % (the flow does not depend on the inner mesh)")
+rq = run(TUBE, np=2, extra=COARSE + ["-ale_max_skewness", "0.5"])
+check(rq.code == 3 and "too distorted" in rq.out and rq.summary["converged"] is False,
+      "a mesh past -ale_max_skewness stops the run before the step: exit 3, clear message, converged false")
 for rho in ("100", "10"):
     r = run(TUBE, np=2, extra=["-mesh_h", "0.002", "-ts_max_steps", "40", "-solid_rho", rho])
     check(r.code == 0, f"rho_s = {rho}: 40 steps converge")
