@@ -27,6 +27,13 @@ struct TetGeometry {
   void set(const double X[4][3]);
 };
 
+// c = a x b
+inline void cross(const double a[3], const double b[3], double c[3]) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 // P2 values and physical gradients at a point with barycentric coordinates l.
 inline void p2_tet(const double l[4], const double gl[4][3], double N[10], double dN[10][3]) {
   for (int i = 0; i < 4; ++i) {

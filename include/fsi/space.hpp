@@ -54,6 +54,12 @@ struct Space {
   void check_numbering() const;
   ~Space();
   PetscInt n_cells() const { return cEnd - cStart; }
+  // The 4 vertex positions of local cell k taken from Xv (3 per local vertex, e.g. X).
+  void cell_points(PetscInt k, const double *Xv, double P[4][3]) const {
+    for (int i = 0; i < 4; ++i)
+      for (int d = 0; d < 3; ++d)
+        P[i][d] = Xv[3 * cell_vertex[4 * k + i] + d];
+  }
   PetscInt n_vertices() const { return vEnd - vStart; }
   bool owned(PetscInt local_dof) const {
     PetscInt g = local_to_global[local_dof];

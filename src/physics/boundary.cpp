@@ -5,6 +5,16 @@
 
 namespace fsi {
 
+// A unit vector from option `name` (3 numbers x,y,z, not all zero).
+static void read_direction(const std::string &name, double dir[3]) {
+  auto d = opt::reals(name);
+  if (d.size() != 3) throw InputError("option -" + name + " needs 3 numbers x,y,z");
+  const double nrm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (nrm == 0) throw InputError("option -" + name + " must be non-zero");
+  for (int i = 0; i < 3; ++i)
+    dir[i] = d[i] / nrm;
+}
+
 void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *exact,
                        const ExactSolid *exact_solid, double mu, double rho,
                        const std::vector<PetscInt> *fluid_cells) {
@@ -41,12 +51,7 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
         throw InputError("-" + pre + "profile exact needs -exact_displacement");
       if (bc.profile != "exact") {
         bc.value = opt::real(pre + "value", 0);
-        auto d = opt::reals(pre + "direction");
-        if (d.size() != 3) throw InputError("option -" + pre + "direction needs 3 numbers x,y,z");
-        double nrm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (nrm == 0) throw InputError("option -" + pre + "direction must be non-zero");
-        for (int i = 0; i < 3; ++i)
-          bc.dir[i] = d[i] / nrm;
+        read_direction(pre + "direction", bc.dir);
         bc.wave = Waveform::from_options(pre);
       }
     }
@@ -62,12 +67,7 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
         throw InputError("-" + pre + "profile exact needs -exact_solution");
       if (bc.profile != "exact") {
         bc.value = opt::real(pre + "value", 0);
-        auto d = opt::reals(pre + "direction");
-        if (d.size() != 3) throw InputError("option -" + pre + "direction needs 3 numbers x,y,z");
-        double nrm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (nrm == 0) throw InputError("option -" + pre + "direction must be non-zero");
-        for (int i = 0; i < 3; ++i)
-          bc.dir[i] = d[i] / nrm;
+        read_direction(pre + "direction", bc.dir);
       }
       if (bc.profile == "parabolic") {
         auto c = opt::reals(pre + "center");
@@ -110,12 +110,9 @@ void Boundaries::setup(const Mesh &mesh, const Space &space, const ExactFlow *ex
   // Pressure dofs outside the fluid belong to no equation: hold them at zero.
   const std::vector<char> in_fluid =
       fluid_cells ? space.pressure_dofs_of(*fluid_cells) : std::vector<char>(space.n_local, 0);
-  const std::vector<char> all_p = space.pressure_dofs_of([&] {
-    std::vector<PetscInt> all(space.n_cells());
-    for (PetscInt k = 0; k < space.n_cells(); ++k)
-      all[k] = k;
-    return all;
-  }());
+  std::vector<char> all_p(space.n_local, 0); // every local vertex belongs to a local cell
+  for (PetscInt d : space.cell_pdof)
+    all_p[d] = 1;
   for (PetscInt i = 0; i < space.n_local; ++i)
     if (all_p[i] && !in_fluid[i]) {
       outside_fluid_.push_back(i);
@@ -335,8 +332,8 @@ static SolidFace solid_face(const Space &space, const BoundaryFace &f) {
   double e1[3], e2[3];
   for (int d = 0; d < 3; ++d)
     e1[d] = s.X[1][d] - s.X[0][d], e2[d] = s.X[2][d] - s.X[0][d];
-  const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
+  double c[3];
+  cross(e1, e2, c);
   s.sign = c[0] * n[0] + c[1] * n[1] + c[2] * n[2] > 0 ? 1.0 : -1.0;
   return s;
 }
@@ -361,9 +358,10 @@ void Boundaries::add_solid_load_residual(const BoundaryCondition &bc, const Step
         for (int d = 0; d < 3; ++d)
           gx[d] += dxi[a] * x[a][d], ge[d] += deta[a] * x[a][d];
       // n da / (dxi deta), outward
-      const double nda[3] = {sf.sign * (gx[1] * ge[2] - gx[2] * ge[1]),
-                             sf.sign * (gx[2] * ge[0] - gx[0] * ge[2]),
-                             sf.sign * (gx[0] * ge[1] - gx[1] * ge[0])};
+      double nda[3];
+      cross(gx, ge, nda);
+      for (int d = 0; d < 3; ++d)
+        nda[d] *= sf.sign;
       const double w = face_rule_.weight[q];
       double tr[3]; // load per (dxi deta)
       if (bc.type == BoundaryCondition::FollowerPressure) {
@@ -409,12 +407,8 @@ void Boundaries::add_follower_jacobian(const BoundaryCondition &bc, const StepCo
         for (int j = 0; j < 3; ++j) {
           double e[3] = {0, 0, 0}, d1[3], d2[3];
           e[j] = 1;
-          d1[0] = e[1] * ge[2] - e[2] * ge[1];
-          d1[1] = e[2] * ge[0] - e[0] * ge[2];
-          d1[2] = e[0] * ge[1] - e[1] * ge[0];
-          d2[0] = gx[1] * e[2] - gx[2] * e[1];
-          d2[1] = gx[2] * e[0] - gx[0] * e[2];
-          d2[2] = gx[0] * e[1] - gx[1] * e[0];
+          cross(e, ge, d1);
+          cross(gx, e, d2);
           for (int a = 0; a < 6; ++a)
             for (int i = 0; i < 3; ++i)
               K[3 * a + i][3 * b + j] += c * N[a] * (dxi[b] * d1[i] + deta[b] * d2[i]);

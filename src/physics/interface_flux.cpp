@@ -50,11 +50,6 @@ void InterfaceMassFlux::wall_flux(const StepContext &ctx, const BoundaryFace &f,
 // lambda_a (S[a], outward positive), and its derivative dS[a][3 c + i] / d delta_c,i.
 void InterfaceMassFlux::swept(const StepContext &ctx, const BoundaryFace &f, double S[3],
                               double dS[3][9]) const {
-  auto cross = [](const double u[3], const double v[3], double r[3]) {
-    r[0] = u[1] * v[2] - u[2] * v[1];
-    r[1] = u[2] * v[0] - u[0] * v[2];
-    r[2] = u[0] * v[1] - u[1] * v[0];
-  };
   // delta = X + u_{n+1}(U) - X_n: the wall follows the solid displacement of this iterate.
   double Xn[3][3], dl[3][3];
   for (int a = 0; a < 3; ++a)

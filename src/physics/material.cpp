@@ -67,21 +67,26 @@ template <typename T, int N> double value(const Dual<T, N> &a) {
   return value(a.v);
 }
 
+// C = F^T F (row-major) and its invariants I1 = tr C, I2 = (I1^2 - C:C) / 2 (C symmetric).
+template <typename S> void cauchy_green(const S F[9], S C[9], S &I1, S &I2) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      C[3 * i + j] = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
+  I1 = C[0] + C[4] + C[8];
+  S trC2 = C[0] * C[0];
+  for (int k = 1; k < 9; ++k)
+    trC2 = trC2 + C[k] * C[k];
+  I2 = 0.5 * (I1 * I1 - trC2);
+}
+
 // Isochoric/volumetric Mooney-Rivlin energy (neo-Hookean when c01 = 0), generic in the scalar.
 template <typename S> S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa) {
   // J = det F
   S J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
         F[2] * (F[3] * F[7] - F[4] * F[6]);
   if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
-  S C[9];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      C[3 * i + j] = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
-  S I1 = C[0] + C[4] + C[8];
-  S trC2 = C[0] * C[0];
-  for (int k = 1; k < 9; ++k)
-    trC2 = trC2 + C[k] * C[k]; // C symmetric: tr(C^2) = C:C
-  S I2 = 0.5 * (I1 * I1 - trC2);
+  S C[9], I1, I2;
+  cauchy_green(F, C, I1, I2);
   S I1b = power(J, -2.0 / 3.0) * I1, I2b = power(J, -4.0 / 3.0) * I2;
   S Jm1 = J + (-1.0);
   return c10 * (I1b + (-3.0)) + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1);
@@ -104,15 +109,8 @@ void mooney_rivlin_stress(const S F[9], double c10, double c01, double kappa, S 
   cof[8] = F[0] * F[4] - F[1] * F[3];
   S J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
   if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
-  S C[9];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      C[3 * i + j] = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
-  S I1 = C[0] + C[4] + C[8];
-  S trC2 = C[0] * C[0];
-  for (int k = 1; k < 9; ++k)
-    trC2 = trC2 + C[k] * C[k];
-  S I2 = 0.5 * (I1 * I1 - trC2);
+  S C[9], I1, I2;
+  cauchy_green(F, C, I1, I2);
   S Jinv = power(J, -1.0), a = power(J, -2.0 / 3.0);
   S a2 = a * a;
   S s1 = (2 * c10) * a, s2 = (2 * c01) * a2;

@@ -166,9 +166,7 @@ LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
   double vmax = 0;
   for (PetscInt k : fluid_cells) {
     double X[4][3];
-    for (int a = 0; a < 4; ++a)
-      for (int d = 0; d < 3; ++d)
-        X[a][d] = space.X[3 * space.cell_vertex[4 * k + a] + d];
+    space.cell_points(k, space.X.data(), X);
     TetGeometry g;
     g.set(X);
     vmax = std::max(vmax, g.absdet / 6);
@@ -190,9 +188,7 @@ LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
     for (PetscInt k : fluid_cells) {
       double X[4][3], K[12][12] = {};
       PetscInt idx[12];
-      for (int a = 0; a < 4; ++a)
-        for (int d = 0; d < 3; ++d)
-          X[a][d] = space.X[3 * space.cell_vertex[4 * k + a] + d];
+      space.cell_points(k, space.X.data(), X);
       TetGeometry g;
       g.set(X);
       const double V = g.absdet / 6, kk = std::pow(gvmax / V, chi_);

@@ -1,5 +1,6 @@
 #include "fsi/mesh_motion.hpp"
 #include "fsi/options.hpp"
+#include "fsi/p2tet.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -60,11 +61,8 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
   double jmin = 1e300, smax = 0;
   for (PetscInt k : cells) {
     double P[4][3], P0[4][3];
-    for (int i = 0; i < 4; ++i)
-      for (int d = 0; d < 3; ++d) {
-        P[i][d] = X[3 * space.cell_vertex[4 * k + i] + d];
-        P0[i][d] = space.X[3 * space.cell_vertex[4 * k + i] + d];
-      }
+    space.cell_points(k, X.data(), P);
+    space.cell_points(k, space.X.data(), P0);
     auto volume = [](const double Q[4][3], double a[3], double b[3], double c[3]) {
       for (int d = 0; d < 3; ++d)
         a[d] = Q[1][d] - Q[0][d], b[d] = Q[2][d] - Q[0][d], c[d] = Q[3][d] - Q[0][d];
@@ -80,11 +78,6 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
       continue;
     }
     // circumradius: |a^2 (b x c) + b^2 (c x a) + c^2 (a x b)| / (12 V)
-    auto cross = [](const double u[3], const double v[3], double w[3]) {
-      w[0] = u[1] * v[2] - u[2] * v[1];
-      w[1] = u[2] * v[0] - u[0] * v[2];
-      w[2] = u[0] * v[1] - u[1] * v[0];
-    };
     double bc[3], ca[3], ab[3], s[3];
     cross(b, c, bc);
     cross(c, a, ca);

@@ -45,9 +45,7 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh, const SolidParams
 }
 
 void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
-  for (int i = 0; i < 4; ++i)
-    for (int d = 0; d < 3; ++d)
-      X[i][d] = space_.X[3 * space_.cell_vertex[4 * k + i] + d];
+  space_.cell_points(k, space_.X.data(), X);
   g.set(X);
 }
 

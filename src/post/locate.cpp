@@ -15,9 +15,7 @@ PointLocation locate_point(const Space &space, const std::vector<PetscInt> &cell
   PetscInt best_cell = -1;
   for (PetscInt cell : cells) {
     double X[4][3];
-    for (int i = 0; i < 4; ++i)
-      for (int d = 0; d < 3; ++d)
-        X[i][d] = space.X[3 * space.cell_vertex[4 * cell + i] + d];
+    space.cell_points(cell, space.X.data(), X);
     TetGeometry g;
     g.set(X);
     double l[4], s = 0;

@@ -69,9 +69,7 @@ std::vector<double> SolidMonitors::evaluate(const Problem &pb) {
     double acc[2] = {}, glob[2];
     for (PetscInt k : solid_->cells()) {
       double X[4][3];
-      for (int i = 0; i < 4; ++i)
-        for (int d = 0; d < 3; ++d)
-          X[i][d] = space_->X[3 * space_->cell_vertex[4 * k + i] + d];
+      space_->cell_points(k, space_->X.data(), X);
       TetGeometry g;
       g.set(X);
       for (size_t q = 0; q < rule.weight.size(); ++q) {

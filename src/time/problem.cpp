@@ -178,6 +178,7 @@ void Problem::set_mesh_motion(std::unique_ptr<MeshMotion> m, const std::vector<P
   motion_ = std::move(m);
   fluid_cells_ = fluid;
   geometry_iterations_ = (int)opt::integer("ale_geometry_iterations", 0);
+  if (geometry_iterations_ < 0) throw InputError("option -ale_geometry_iterations must be >= 0");
   geometry_rtol_ = opt::positive("ale_geometry_rtol", 1e-6);
   min_jacobian_ = opt::real("ale_min_jacobian", 0.0);
   max_skewness_ = opt::positive("ale_max_skewness", 0.99);
