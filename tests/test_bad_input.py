@@ -20,14 +20,31 @@ cases = [
     ("output directory not writable", ["-out_dir", "/proc/fsi_results"], "output directory"),
     ("mesh slip on a curved wall", ["-ale_motion", "laplace", "-ale_slip_boundaries", "wall"], "axis-aligned plane"),
     ("unknown mesh motion", ["-ale_motion", "elastic"], "elastic"),
+    ("mesh without the fluid region", ["-fluid_region", "blood"], "blood"),
+    ("zero time step", ["-ts_scheme", "alpha", "-ts_dt", "0"], "ts_dt"),
+    ("negative time step", ["-ts_scheme", "alpha", "-ts_dt", "-1e-3"], "ts_dt"),
+    ("wall shear on a missing surface", ["-hemo_surfaces", "aorta"], "aorta"),
+    ("negative checkpoint interval", ["-checkpoint_every", "-1"], "checkpoint_every"),
+    ("missing restart file", ["-restart", "/nonexistent/checkpoint.h5"], "/nonexistent/checkpoint.h5"),
+    ("corrupt restart file", ["-restart", garbage], "not an HDF5 file"),
 ]
 solid_cases = [
+    ("zero Young's modulus", ["-solid_material", "neo_hookean", "-solid_E", "0", "-solid_nu", "0.3"], "solid_E"),
+    ("nu above 0.5", ["-solid_material", "neo_hookean", "-solid_E", "1e4", "-solid_nu", "0.6"], "solid_nu"),
     ("negative solid density", ["-solid_rho", "-1000"], "solid_rho"),
     ("incompressible linear solid", ["-solid_material", "svk", "-solid_E", "1e4", "-solid_nu", "0.5"], "solid_nu"),
     ("unknown material", ["-solid_material", "ogden"], "ogden"),
     ("Mooney-Rivlin without kappa", ["-solid_kappa", "-5"], "solid_kappa"),
     ("mesh without the solid region", ["-solid_region", "tissue"], "tissue"),
     ("unknown solid boundary type", ["-bc_zmax_type", "pinned"], "pinned"),
+]
+# A checkpoint of the Poiseuille scene, then restarts that do not match it.
+ck = run(scene("poiseuille"), extra=["-checkpoint_every", "1"])
+ckfile = os.path.join(ck.dir, "checkpoint.h5")
+check(ck.code == 0 and os.path.exists(ckfile), "a checkpoint to restart from")
+cases += [
+    ("restart file from another mesh", ["-restart", ckfile, "-mesh_params", "R=0.005,L=0.01,ncirc=30"], "another mesh"),
+    ("restart file from another scene", ["-restart", ckfile, "-ts_scheme", "alpha", "-ts_dt", "0.1"], "another scene"),
 ]
 for name, extra, needle, sc in [c + ("poiseuille",) for c in cases] + [c + ("mr_uniaxial",) for c in solid_cases]:
     r = run(scene(sc), extra=extra)

@@ -17,6 +17,11 @@ struct SolveError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A fluid mesh too distorted to continue: a smaller step does not help (remeshing would).
+struct DistortionError : SolveError {
+  using SolveError::SolveError;
+};
+
 struct PetscFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

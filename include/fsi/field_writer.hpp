@@ -13,6 +13,7 @@ namespace fsi {
 
 struct FieldSet {
   bool pressure = true, mesh_displacement = false, displacement = false;
+  std::string base = "fields"; // file names base.h5, base.xdmf ("fields_restart" on restart)
 };
 
 class FieldWriter {

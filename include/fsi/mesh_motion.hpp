@@ -28,6 +28,8 @@ struct MeshMotion {
   // Vertex displacement at time t, 3 per local vertex.  solid: the solid displacement at t as a
   // local array in the velocity layout (nullptr when the motion does not follow the solid).
   virtual void displacement(double t, const PetscScalar *solid, std::vector<double> &d) = 0;
+  // Initial guess of an iterative motion solve (3 per local vertex); ignored by direct motions.
+  virtual void set_guess(const std::vector<double> &d) {}
 };
 
 // fluid_cells: local cells of the fluid (nullptr without a fluid).

@@ -1,8 +1,10 @@
 // The output contract (shared/design.md): in -out_dir DIR (default results/<scene>):
 //   options.txt   every option in effect
-//   monitor.csv   step,time,newton,krylov,step_seconds, then the scene's monitors
+//   monitor.csv   step,time,newton,krylov,step_seconds,dt, then the scene's monitors
 //   fields.h5 + fields.xdmf   vertex fields every -out_fields_every steps (0 = never, the
 //                             default), see field_writer.hpp
+//   hemo.h5 + hemo.xdmf       wall shear and its indices (-hemo_surfaces), see wall_shear.hpp
+//   checkpoint.h5             the state to resume from (checkpoint.hpp)
 //   summary.json  written last: physics, ranks, sizes, iterations, times, converged, reason
 // Files are written under temporary names and renamed when complete; a stale summary.json from an
 // earlier run is removed at start, so a run that dies leaves no summary claiming success.
@@ -38,7 +40,8 @@ public:
   ~Output();
   const std::string &dir() const { return dir_; }
   void write_options() const;
-  void open_monitor(const std::vector<std::string> &columns);
+  // resume_step >= 0 (a restart): keep this directory's earlier rows up to that step.
+  void open_monitor(const std::vector<std::string> &columns, long resume_step = -1);
   void monitor_row(const std::vector<double> &values);
   void close_monitor();
   void write_summary(const Json &j) const;

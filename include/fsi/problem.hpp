@@ -61,6 +61,15 @@ public:
   // ts_scheme steady: load steps of size dt over [0, ts_max_time]; the unknown's velocity part
   // is then the displacement rate of the solid (u_{n+1} = u_n + dt v).
 
+  // Step size of the next step (step control may cut it; the scene's is time_params().dt).
+  void set_dt(double dt);
+  double dt() const { return dt_; }
+  // State for checkpoints: V_n, A_n, D_n (the solution of the last step is V_n) and the mesh
+  // displacement (3 per local vertex); restore() resumes from them at (t, n).
+  std::vector<Vec> state_vectors() const { return {Vn_, An_, Dn_}; }
+  const std::vector<double> &mesh_displacement() const { return dn_; }
+  void restore(double t, long n, const std::vector<double> &dn);
+
   double time() const { return t_; }
   long step_index() const { return n_; }
   Vec solution() const { return U_; }
@@ -94,6 +103,7 @@ private:
   void check_mesh(const char *when, long step);
   const Space &space_;
   TimeParams tp_;
+  double dt_;
   double alpha_m_ = 1, alpha_f_ = 1, gamma_ = 1, beta_ = 0.25;
   std::vector<std::unique_ptr<PhysicsModule>> modules_;
   Boundaries *bcs_ = nullptr;

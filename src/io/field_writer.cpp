@@ -40,7 +40,8 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir, const Field
   FSI_CALL(VecDestroy(&g));
   FSI_CALL(VecDestroy(&l));
 
-  FSI_CALL(PetscViewerHDF5Open(comm, (dir + "/fields.h5").c_str(), FILE_MODE_WRITE, &h5_));
+  FSI_CALL(
+      PetscViewerHDF5Open(comm, (dir + "/" + set.base + ".h5").c_str(), FILE_MODE_WRITE, &h5_));
   Vec cells;
   FSI_CALL(VecCreateMPI(comm, 4 * nc, PETSC_DETERMINE, &cells));
   FSI_CALL(VecSetBlockSize(cells, 4));
@@ -144,7 +145,7 @@ void FieldWriter::close() {
   int rank;
   MPI_Comm_rank(PetscObjectComm((PetscObject)space_.dm), &rank);
   if (rank != 0) return;
-  const std::string path = dir_ + "/fields.xdmf", tmp = path + ".tmp";
+  const std::string path = dir_ + "/" + set_.base + ".xdmf", tmp = path + ".tmp";
   std::ofstream f(tmp);
   const auto nv = std::to_string(nv_global_), nc = std::to_string(ncells_global_);
   f << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
@@ -157,18 +158,19 @@ void FieldWriter::close() {
       << "    <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << nc << "\">\n"
       << "     <DataItem Dimensions=\"" << nc
       << " 4\" NumberType=\"Float\" Precision=\"8\" "
-         "Format=\"HDF\">fields.h5:/topology/cells</DataItem>\n"
+         "Format=\"HDF\">"
+      << set_.base << ".h5:/topology/cells</DataItem>\n"
       << "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n"
       << "     <DataItem Dimensions=\"" << nv
       << " 3\" NumberType=\"Float\" Precision=\"8\" "
-         "Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n"
+         "Format=\"HDF\">"
+      << set_.base << ".h5:/geometry/vertices</DataItem>\n"
       << "    </Geometry>\n";
     for (auto &[name, nc_] : names())
       f << "    <Attribute Name=\"" << name << "\" AttributeType=\""
         << (nc_ == 3 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n     <DataItem Dimensions=\""
-        << nv << (nc_ == 3 ? " 3" : "")
-        << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/" << name
-        << tag << "</DataItem>\n    </Attribute>\n";
+        << nv << (nc_ == 3 ? " 3" : "") << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+        << set_.base << ".h5:/fields/" << name << tag << "</DataItem>\n    </Attribute>\n";
     f << "   </Grid>\n";
   }
   f << "  </Grid>\n </Domain>\n</Xdmf>\n";

@@ -77,7 +77,6 @@ Output::Output(MPI_Comm comm, const std::string &dir) : comm_(comm), dir_(dir) {
     ok = std::system(cmd.c_str()) == 0 && access(dir.c_str(), W_OK) == 0;
     if (ok) {
       std::remove((dir + "/summary.json").c_str());
-      std::remove((dir + "/monitor.csv").c_str());
     }
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
@@ -122,14 +121,28 @@ void Output::write_options() const {
   write_atomic("options.txt", lines);
 }
 
-void Output::open_monitor(const std::vector<std::string> &columns) {
+void Output::open_monitor(const std::vector<std::string> &columns, long resume_step) {
   if (rank_ != 0) return;
-  monitor_ = std::fopen((dir_ + "/monitor.csv.partial").c_str(), "w");
-  if (!monitor_) throw InputError("cannot write " + dir_ + "/monitor.csv.partial");
-  std::fprintf(monitor_, "step,time,newton,krylov,step_seconds");
+  std::string header = "step,time,newton,krylov,step_seconds";
   for (auto &c : columns)
-    std::fprintf(monitor_, ",%s", c.c_str());
-  std::fprintf(monitor_, "\n");
+    header += "," + c;
+  // A resumed run keeps the rows up to its restart step from this directory's earlier run (the
+  // partial file of a killed run is the newest), when that run had the same columns.
+  std::vector<std::string> kept;
+  const std::string csv = dir_ + "/monitor.csv", partial = csv + ".partial";
+  if (resume_step >= 0) {
+    std::ifstream old(access(partial.c_str(), R_OK) == 0 ? partial : csv);
+    std::string line;
+    if (std::getline(old, line) && line == header)
+      while (std::getline(old, line))
+        if (!line.empty() && std::atol(line.c_str()) <= resume_step) kept.push_back(line);
+  }
+  std::remove(csv.c_str());
+  monitor_ = std::fopen(partial.c_str(), "w");
+  if (!monitor_) throw InputError("cannot write " + partial);
+  std::fprintf(monitor_, "%s\n", header.c_str());
+  for (auto &l : kept)
+    std::fprintf(monitor_, "%s\n", l.c_str());
 }
 
 void Output::monitor_row(const std::vector<double> &v) {

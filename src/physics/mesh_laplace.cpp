@@ -28,6 +28,7 @@ public:
   }
   bool follows_solid() const override { return true; }
   void displacement(double t, const PetscScalar *solid, std::vector<double> &d) override;
+  void set_guess(const std::vector<double> &d) override;
 
 private:
   const Space &space_;
@@ -101,20 +102,30 @@ LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
   PetscBool has;
   FSI_CALL(DMHasLabel(dm, "__ale_fixed", &has));
   if (!has) {
-    DMLabel ext, fixed;
-    FSI_CALL(DMLabelCreate(PETSC_COMM_SELF, "__exterior", &ext));
-    FSI_CALL(DMPlexMarkBoundaryFaces(dm, 1, ext));
+    // Exterior faces: one supporting cell over all ranks.  (PETSc 3.18's DMPlexMarkBoundaryFaces
+    // also marks faces on the partition boundary, which made the mesh motion partition
+    // dependent.)  Support counts are summed over the point SF: leaves to roots and back.
+    PetscInt pStart, pEnd, fStart, fEnd;
+    FSI_CALL(DMPlexGetChart(dm, &pStart, &pEnd));
+    FSI_CALL(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
+    std::vector<PetscInt> local(pEnd - pStart, 0), total;
+    for (PetscInt f = fStart; f < fEnd; ++f)
+      FSI_CALL(DMPlexGetSupportSize(dm, f, &local[f - pStart]));
+    total = local;
+    PetscSF sf;
+    FSI_CALL(DMGetPointSF(dm, &sf));
+    FSI_CALL(PetscSFReduceBegin(sf, MPIU_INT, local.data(), total.data(), MPI_SUM));
+    FSI_CALL(PetscSFReduceEnd(sf, MPIU_INT, local.data(), total.data(), MPI_SUM));
+    FSI_CALL(PetscSFBcastBegin(sf, MPIU_INT, total.data(), total.data(), MPI_REPLACE));
+    FSI_CALL(PetscSFBcastEnd(sf, MPIU_INT, total.data(), total.data(), MPI_REPLACE));
+    DMLabel fixed;
     FSI_CALL(DMCreateLabel(dm, "__ale_fixed"));
     FSI_CALL(DMGetLabel(dm, "__ale_fixed", &fixed));
     std::vector<DMLabel> slip_labels; // fetched once: mesh.label() is collective
     for (auto &s : slip)
       slip_labels.push_back(mesh.label(s));
-    PetscInt fStart, fEnd;
-    FSI_CALL(DMPlexGetHeightStratum(dm, 1, &fStart, &fEnd));
     for (PetscInt f = fStart; f < fEnd; ++f) {
-      PetscInt val;
-      FSI_CALL(DMLabelGetValue(ext, f, &val));
-      if (val != 1) continue;
+      if (total[f - pStart] != 1) continue;
       bool on_slip = false;
       for (DMLabel sl : slip_labels) {
         PetscInt sv;
@@ -123,7 +134,6 @@ LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
       }
       if (!on_slip) FSI_CALL(DMLabelSetValue(fixed, f, 1));
     }
-    FSI_CALL(DMLabelDestroy(&ext));
   }
   const std::vector<char> fixed = face_vertices(mesh, space, "__ale_fixed");
   std::vector<int> slip_axis(nv, -1);
@@ -251,6 +261,19 @@ LaplaceMotion::~LaplaceMotion() {
   for (auto v : vs)
     if (*v) VecDestroy(v);
   if (scatter_) VecScatterDestroy(&scatter_);
+}
+
+void LaplaceMotion::set_guess(const std::vector<double> &d) {
+  PetscInt lo, hi;
+  FSI_CALL(VecGetOwnershipRange(x_, &lo, &hi));
+  PetscScalar *x;
+  FSI_CALL(VecGetArray(x_, &x));
+  for (size_t v = 0; v < gidx_.size(); ++v)
+    for (int i = 0; i < 3; ++i) {
+      const PetscInt r = 3 * gidx_[v] + i;
+      if (r >= lo && r < hi) x[r - lo] = d[3 * v + i];
+    }
+  FSI_CALL(VecRestoreArray(x_, &x));
 }
 
 void LaplaceMotion::displacement(double, const PetscScalar *solid, std::vector<double> &d) {

@@ -68,7 +68,7 @@ static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
   return 0;
 }
 
-Problem::Problem(const Space &space, const TimeParams &tp) : space_(space), tp_(tp) {
+Problem::Problem(const Space &space, const TimeParams &tp) : space_(space), tp_(tp), dt_(tp.dt) {
   if (!tp.steady) {
     const double r = tp.rho_inf;
     alpha_m_ = (3 - r) / (2 * (1 + r));
@@ -184,6 +184,27 @@ void Problem::set_mesh_motion(std::unique_ptr<MeshMotion> m, const std::vector<P
   max_skewness_ = opt::positive("ale_max_skewness", 0.99);
 }
 
+// A new step size invalidates a Jacobian or preconditioner the scene computes once for the run
+// (-snes_lag_jacobian -2): have it recomputed at the next solve.
+void Problem::set_dt(double dt) {
+  if (dt == dt_) return;
+  dt_ = dt;
+  PetscInt lag;
+  FSI_CALL(SNESGetLagJacobian(snes_, &lag));
+  if (lag == -1) FSI_CALL(SNESSetLagJacobian(snes_, -2));
+  FSI_CALL(SNESGetLagPreconditioner(snes_, &lag));
+  if (lag == -1) FSI_CALL(SNESSetLagPreconditioner(snes_, -2));
+}
+
+void Problem::restore(double t, long n, const std::vector<double> &dn) {
+  t_ = t;
+  n_ = n;
+  dn_ = dn;
+  for (size_t i = 0; i < Xn_.size(); ++i)
+    Xn_[i] = space_.X[i] + dn_[i];
+  FSI_CALL(VecCopy(Vn_, U_));
+}
+
 void Problem::solution_local(Vec &loc) const {
   space_.to_local(U_, loc);
 }
@@ -230,7 +251,7 @@ void Problem::initialize(const std::string &ic) {
     PetscSection ls;
     FSI_CALL(DMGetLocalSection(space_.dm, &ls));
     std::vector<double> dm_m, dm_p;
-    const double eps = 1e-6 * (tp_.steady ? 1.0 : tp_.dt) + 1e-9;
+    const double eps = 1e-6 * (tp_.steady ? 1.0 : dt_) + 1e-9;
     mesh_at(-eps, dm_m);
     mesh_at(eps, dm_p);
     PetscScalar *u, *a;
@@ -295,14 +316,14 @@ void Problem::initialize(const std::string &ic) {
 
 void Problem::set_context(double t_np1) {
   ctx_.t_n = t_;
-  ctx_.dt = tp_.dt;
+  ctx_.dt = dt_;
   ctx_.t_np1 = t_np1;
   ctx_.steady = tp_.steady;
   ctx_.alpha_m = alpha_m_;
   ctx_.alpha_f = alpha_f_;
   ctx_.gamma = gamma_;
   ctx_.beta = beta_;
-  ctx_.t_af = tp_.steady ? t_np1 : t_ + alpha_f_ * tp_.dt;
+  ctx_.t_af = tp_.steady ? t_np1 : t_ + alpha_f_ * dt_;
   ctx_.X_af = Xaf_.data();
   // Without mesh motion both configurations are the same array: kernels then skip the second
   // geometry (pointer equality).
@@ -313,7 +334,7 @@ void Problem::set_context(double t_np1) {
 
 // Solid displacement at t_{n+1} for the velocity U (all velocity dofs), as a local array.
 void Problem::displacement_np1_local(Vec U, Vec loc) {
-  const double dt = tp_.dt;
+  const double dt = dt_;
   FSI_CALL(VecCopy(Dn_, work_));
   if (tp_.steady) {
     FSI_CALL(VecAXPY(work_, dt, U));
@@ -337,7 +358,7 @@ void Problem::set_geometry(const std::vector<double> &dnp1) {
   const double af = tp_.steady ? 1.0 : alpha_f_;
   for (size_t i = 0; i < nd; ++i) {
     Xaf_[i] = space_.X[i] + dn_[i] + af * (dnp1_[i] - dn_[i]);
-    W_[i] = tp_.steady ? 0.0 : (dnp1_[i] - dn_[i]) / tp_.dt;
+    W_[i] = tp_.steady ? 0.0 : (dnp1_[i] - dn_[i]) / dt_;
     Xnp1_[i] = space_.X[i] + dnp1_[i];
   }
 }
@@ -372,15 +393,17 @@ void Problem::check_mesh(const char *when, long step) {
                   "(-ale_stiffening 1) or reduce the load",
                   when, step, quality_.min_jacobian, min_jacobian_, quality_.max_skewness,
                   max_skewness_);
-    throw SolveError(msg);
+    throw DistortionError(msg);
   }
 }
 
 StepStats Problem::step() {
   Stages &st = Stages::get();
-  const double t_np1 = t_ + tp_.dt;
+  const double t_np1 = t_ + dt_;
 
-  // History in local form, predictor U = V_n.
+  // History in local form, predictor U = V_n; the mesh solver starts from the last accepted
+  // mesh (a retried or restarted step starts exactly where the uninterrupted run did).
+  if (motion_) motion_->set_guess(dn_);
   space_.to_local(Vn_, Vloc_);
   space_.to_local(An_, Aloc_);
   space_.to_local(Dn_, Dloc_);
@@ -447,7 +470,7 @@ StepStats Problem::step() {
     throw SolveError(std::string("Newton did not converge at step ") + std::to_string(n_ + 1) +
                      " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[s.reason] +
                      "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
-  const double dt = tp_.dt;
+  const double dt = dt_;
   if (tp_.steady) {
     FSI_CALL(VecAXPY(Dn_, dt, U_)); // u_{n+1} = u_n + dt v
   } else {
@@ -478,7 +501,7 @@ void Problem::displacement_to_velocity_values(double t_np1) {
   FSI_CALL(VecGetArrayRead(Dloc_, &d));
   PetscScalar *u;
   FSI_CALL(VecGetArray(U_, &u));
-  const double dt = tp_.dt;
+  const double dt = dt_;
   for (auto &[i, g] : disp_values_) {
     double val;
     if (tp_.steady)

@@ -1,0 +1,147 @@
+"""Checkpoint and exact restart (issue 5).
+1. Womersley (fluid, wall-shear accumulators over the period): 2N steps on 2 ranks equal N steps +
+   restart + N steps, resumed on 2 ranks and on 1 rank, to 1e-12 of each field's scale; the
+   period's OSI/TAWSS maps equal too.
+2. The FSI tube (solid displacement, mesh motion history): the same, 2 -> 2 and 2 -> 1 ranks.
+3. A run killed (SIGKILL) while writing its 2nd checkpoint leaves the 1st usable: restarting from
+   it in the same directory finishes the run with the uninterrupted answer, monitor.csv whole.
+4. SIGTERM to mpirun: the app writes a checkpoint, a summary saying why it stopped, exits
+   non-zero; resuming from that checkpoint gives the uninterrupted answer."""
+import os
+import signal
+import subprocess
+import time
+import h5py
+import numpy as np
+from fsitest import APP, ENV, SRC, check, finish, preset, run, scene
+
+
+def state(path):
+    with h5py.File(path) as f:
+        return {k: f[k][()] for k in ("dofs/keys", "dofs/state", "vertices/keys",
+                                      "vertices/mesh_displacement")}, dict(f.attrs)
+
+
+def compare(a, b, what, solid_radius=None):
+    """Relative L2 differences of the state: V_n (velocity and pressure), dt A_n (velocity
+    components, against |V_n|), D_n (solid nodes only: elsewhere it is an unused sum), mesh
+    displacement.  Two identical 2-rank runs differ by up to ~1e-13 in these measures (MUMPS's
+    parallel factorisation is not bitwise reproducible), so 1e-12 tests the restart, not the
+    solver's noise."""
+    (sa, aa), (sb, ab) = state(a), state(b)
+    check(aa["step"] == ab["step"] and abs(aa["time"] - ab["time"]) < 1e-15,
+          f"{what}: same step and time ({aa['step']:.0f}, {ab['step']:.0f})")
+    if sa["dofs/state"].shape != sb["dofs/state"].shape:
+        check(False, f"{what}: state shapes differ")
+        return
+    keys, x, y = sa["dofs/keys"], sa["dofs/state"], sb["dofs/state"]
+    vel = keys[:, 3] < 3
+    # A_n in velocity units (dt A_n against |V_n|): two identical 2-rank tube runs differ by
+    # 1.1e-12 in A_n itself (a difference quotient of V_n), 1.4e-13 in these units.
+    dt = aa["dt"]
+    parts = {"V": (x[:, 0], y[:, 0])}
+    nA = np.linalg.norm(x[vel, 1] - y[vel, 1]) * dt / np.linalg.norm(x[vel, 0])
+    if solid_radius:
+        solid = vel & (np.hypot(keys[:, 0], keys[:, 1]) > solid_radius * (1 + 1e-9))
+        parts["D"] = (x[solid, 2], y[solid, 2])
+    parts["mesh"] = (sa["vertices/mesh_displacement"].ravel(),
+                     sb["vertices/mesh_displacement"].ravel())
+    worst, text = nA, [f"dt A {nA:.1e}"]
+    for name, (u, v) in parts.items():
+        n = np.linalg.norm(u)
+        if n == 0:
+            continue
+        e = np.linalg.norm(u - v) / n
+        worst = max(worst, e)
+        text.append(f"{name} {e:.1e}")
+    print(f"{what}: relative L2 differences " + ", ".join(text))
+    check(worst < 1e-12, f"{what}: equal to 1e-12 ({worst:.1e})")
+
+
+wom = [scene("womersley")]
+hemo = ["-hemo_surfaces", "wall", "-hemo_window", "1.0"]
+A = run(wom, np=2, extra=hemo + ["-checkpoint_every", "20"])
+B = run(wom, np=2, extra=hemo + ["-checkpoint_every", "20", "-ts_max_steps", "20"])
+check(A.code == 0 and B.code == 0, "Womersley 40-step and 20-step runs succeed")
+ck = os.path.join(B.dir, "checkpoint.h5")
+for np_ in (2, 1):
+    C = run(wom, np=np_, extra=hemo + ["-checkpoint_every", "20", "-restart", ck])
+    check(C.code == 0 and "resumed from" in C.out, f"Womersley resumed on {np_} rank(s)")
+    compare(os.path.join(A.dir, "checkpoint.h5"), os.path.join(C.dir, "checkpoint.h5"),
+            f"Womersley 40 steps vs 20 + restart on {np_} rank(s) + 20")
+    with h5py.File(os.path.join(A.dir, "hemo.h5")) as fa, \
+            h5py.File(os.path.join(C.dir, "hemo_restart.h5")) as fc:
+        d = max(np.abs(fa[f"wall/window_0/{k}"][()] - fc[f"wall/window_0/{k}"][()]).max()
+                for k in ("tawss", "wss_magnitude_mean", "osi"))
+        scale = fa["wall/window_0/wss_magnitude_mean"][()].max()
+    check(d < 1e-12 * scale,
+          f"period's OSI/TAWSS maps equal after the restart on {np_} rank(s) ({d / scale:.1e})")
+    check(C.summary["restarted_from"]["step"] == 20, "summary records the restart")
+
+# The mesh-motion solve is iterative: its stopping test may fall one CG iteration apart under
+# the parallel LU's 1e-14 noise, so it is converged to round-off here (rtol 1e-14).
+tube = [os.path.join(SRC, "examples", "tube", "tube.opts")]
+tight = ["-ale_ksp_rtol", "1e-14"]
+T = run(tube, np=2, extra=tight + ["-ts_max_steps", "10", "-checkpoint_every", "5"])
+U = run(tube, np=2, extra=tight + ["-ts_max_steps", "5", "-checkpoint_every", "5"])
+check(T.code == 0 and U.code == 0, "tube 10-step and 5-step runs succeed")
+for np_ in (2, 1):
+    V = run(tube, np=np_, extra=tight + ["-ts_max_steps", "10", "-checkpoint_every", "5", "-restart",
+                                 os.path.join(U.dir, "checkpoint.h5")])
+    check(V.code == 0, f"tube resumed on {np_} rank(s)")
+    compare(os.path.join(T.dir, "checkpoint.h5"), os.path.join(V.dir, "checkpoint.h5"),
+            f"FSI tube 10 steps vs 5 + restart on {np_} rank(s) + 5", solid_radius=0.005)
+    a, b = T.monitor[-1]["solid_probe0_ux"], V.monitor[-1]["solid_probe0_ux"]
+    scale = np.abs(state(os.path.join(T.dir, "checkpoint.h5"))[0]["dofs/state"][:, 2]).max()
+    check(abs(a - b) < 1e-12 * scale, f"tube: point M displacement {a:.15e} vs {b:.15e}")
+
+# Killed while writing the 2nd checkpoint (step 20): the step-10 checkpoint survives.
+K = run(wom, np=2, extra=hemo + ["-checkpoint_every", "10", "-checkpoint_crash_test", "2"])
+ck = os.path.join(K.dir, "checkpoint.h5")
+check(K.code != 0 and not os.path.exists(os.path.join(K.dir, "summary.json")),
+      f"killed run: non-zero exit ({K.code}), no summary")
+with h5py.File(ck) as f:
+    step = f.attrs["step"]
+check(step == 10, f"the checkpoint left is the previous one, intact (step {step:.0f})")
+K2 = run(wom, np=2, extra=hemo + ["-checkpoint_every", "10", "-restart", ck, "-out_dir", K.dir])
+check(K2.code == 0, "restart from it in the same directory succeeds")
+compare(os.path.join(A.dir, "checkpoint.h5"), ck, "killed + restarted vs uninterrupted")
+K2.dir = K.dir  # it wrote there (-out_dir given last wins)
+steps = [int(r["step"]) for r in K2.monitor]
+check(steps == list(range(1, 41)), "monitor.csv holds steps 1..40 once each")
+
+# SIGTERM to mpirun during a 400-step run.
+fine = ["-ts_dt", "0.0025"]
+R = run(wom, np=2, extra=fine + ["-checkpoint_every", "400"])
+out = os.path.join(K.dir, "sigterm")
+cmd = ["mpirun", "-n", "2", APP, "-options_file", scene("womersley"), "-options_file",
+       preset("direct"), "-out_dir", out, "-mesh_cache_dir",
+       os.path.join(SRC, "build", "mesh_cache")] + fine
+p = subprocess.Popen(cmd, cwd=SRC, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                     text=True)
+partial = os.path.join(out, "monitor.csv.partial")
+t0 = time.time()
+while time.time() - t0 < 120:
+    if os.path.exists(partial) and sum(1 for _ in open(partial)) > 30:
+        break
+    time.sleep(0.2)
+p.send_signal(signal.SIGTERM)
+text, _ = p.communicate(timeout=120)
+print(text.strip().splitlines()[-1])
+s = None
+if os.path.exists(os.path.join(out, "summary.json")):
+    import json
+    s = json.load(open(os.path.join(out, "summary.json")))
+check(p.returncode != 0, f"SIGTERM: non-zero exit ({p.returncode})")
+check(s is not None and s["converged"] is False and "SIGTERM" in s["reason"],
+      "SIGTERM: summary says converged false, stopped by SIGTERM")
+if s:
+    with h5py.File(os.path.join(out, "checkpoint.h5")) as f:
+        check(f.attrs["step"] == s["final_step"] and 0 < s["final_step"] < 400,
+              f"SIGTERM: checkpoint at the last step ({s['final_step']})")
+    S = run(wom, np=2, extra=fine + ["-checkpoint_every", "400", "-restart",
+                                     os.path.join(out, "checkpoint.h5")])
+    check(S.code == 0, "resumed after SIGTERM")
+    compare(os.path.join(R.dir, "checkpoint.h5"), os.path.join(S.dir, "checkpoint.h5"),
+            "SIGTERM + restart vs uninterrupted (400 steps)")
+finish()
