@@ -23,9 +23,11 @@ struct ExactFlow {
 // rho, mu: the fluid's.  Returns nullptr for none.
 std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu);
 
-// Scalar time functions for boundary data: -<prefix>waveform constant|step|cosine|sine|linear,
-// with -<prefix>t_off (step), -<prefix>period and -<prefix>offset (cosine/sine: offset +
-// cos(2 pi t/T)), linear: t / period (a load factor for load stepping),
+// Scalar time functions for boundary data: -<prefix>waveform
+// constant|step|pulse|cosine|sine|linear, with -<prefix>t_off (step: 1 until t_off; pulse:
+// sin^2(pi t / t_off) until t_off, a smooth bump whose value and slope vanish at both ends),
+// -<prefix>period and -<prefix>offset (cosine/sine: offset + cos(2 pi t/T)), linear: t / period
+// (a load factor for load stepping),
 // and an optional smooth start -<prefix>ramp [s].
 struct Waveform {
   std::string kind = "constant";

@@ -145,6 +145,11 @@ std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu) {
 double Waveform::operator()(double t) const {
   double ramp = (ramp_time > 0 && t < ramp_time) ? 0.5 * (1 - std::cos(M_PI * t / ramp_time)) : 1.0;
   if (kind == "step") return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
+  if (kind == "pulse") { // sin^2 bump over [0, t_off]: value and slope continuous (second order)
+    if (t >= t_off) return 0.0;
+    const double s = std::sin(M_PI * t / t_off);
+    return s * s;
+  }
   if (kind == "cosine") return ramp * (offset + std::cos(2 * M_PI * t / period));
   if (kind == "sine") return ramp * (offset + std::sin(2 * M_PI * t / period));
   if (kind == "linear") return ramp * t / period;
@@ -154,8 +159,8 @@ double Waveform::operator()(double t) const {
 Waveform Waveform::from_options(const std::string &prefix) {
   Waveform w;
   w.kind = opt::choice(prefix + "waveform", "constant",
-                       {"constant", "step", "cosine", "sine", "linear"});
-  if (w.kind == "step") w.t_off = opt::required_positive(prefix + "t_off");
+                       {"constant", "step", "pulse", "cosine", "sine", "linear"});
+  if (w.kind == "step" || w.kind == "pulse") w.t_off = opt::required_positive(prefix + "t_off");
   if (w.kind == "linear") w.period = opt::required_positive(prefix + "period");
   if (w.kind == "cosine" || w.kind == "sine") {
     w.period = opt::required_positive(prefix + "period");
