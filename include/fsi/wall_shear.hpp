@@ -54,7 +54,7 @@ private:
     long n_global = 0;
     Json last_window;
   };
-  void compute(Surface &s, const Problem &pb);
+  void compute(Surface &s, const Problem &pb, const PetscScalar *u); // u: local solution
   void close_window();
   const Space *space_ = nullptr;
   const FluidModule *fluid_ = nullptr;

@@ -34,13 +34,11 @@ Checkpoint::Checkpoint(const Space &space, const std::string &scene)
         add(space.cell_vdof[10 * k + a] + c, x, c);
     }
     for (int i = 0; i < 4; ++i) {
-      add(space.cell_pdof[4 * k + i], P[i], 3);
-      const int v = space.cell_vertex[4 * k + i];
-      if (space.owned(space.cell_pdof[4 * k + i]) && seen[space.cell_pdof[4 * k + i]] == 1) {
-        seen[space.cell_pdof[4 * k + i]] = 2; // vertex listed once
-        vertex_keys_.insert(vertex_keys_.end(), {P[i][0], P[i][1], P[i][2]});
-        vertex_local_.push_back(v);
-      }
+      const PetscInt p = space.cell_pdof[4 * k + i];
+      if (seen[p] || !space.owned(p)) continue;
+      add(p, P[i], 3); // a vertex is owned where its pressure dof is: list it once, here
+      vertex_keys_.insert(vertex_keys_.end(), {P[i][0], P[i][1], P[i][2]});
+      vertex_local_.push_back(space.cell_vertex[4 * k + i]);
     }
   }
 }

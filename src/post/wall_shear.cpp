@@ -82,11 +82,7 @@ std::vector<std::string> WallShear::columns() const {
 }
 
 // tau_w at every face centroid of s on the current configuration.
-void WallShear::compute(Surface &s, const Problem &pb) {
-  Vec loc = space_->create_local();
-  pb.solution_local(loc);
-  const PetscScalar *u;
-  FSI_CALL(VecGetArrayRead(loc, &u));
+void WallShear::compute(Surface &s, const Problem &pb, const PetscScalar *u) {
   const auto &Xc = pb.coordinates();
   const double mu = fluid_->params().mu;
   s.xf.resize(9 * s.faces.size());
@@ -121,8 +117,6 @@ void WallShear::compute(Surface &s, const Problem &pb) {
       for (int d = 0; d < 3; ++d)
         s.xf[9 * i + 3 * j + d] = Xc[3 * f.vertex[j] + d];
   }
-  FSI_CALL(VecRestoreArrayRead(loc, &u));
-  FSI_CALL(VecDestroy(&loc));
 }
 
 void WallShear::update(const Problem &pb, double dt) {
@@ -130,8 +124,15 @@ void WallShear::update(const Problem &pb, double dt) {
   values_.clear();
   const double t = pb.time();
   const bool in_window = t > start_ + 1e-12 * window_;
+  Vec loc = space_->create_local(); // the solution with ghosts, once for all surfaces
+  pb.solution_local(loc);
+  const PetscScalar *u;
+  FSI_CALL(VecGetArrayRead(loc, &u));
+  for (auto &s : surf_)
+    compute(s, pb, u);
+  FSI_CALL(VecRestoreArrayRead(loc, &u));
+  FSI_CALL(VecDestroy(&loc));
   for (auto &s : surf_) {
-    compute(s, pb);
     // area-weighted mean and max of |tau|; exact comparison at the face centroids
     double loc[4] = {0, 0, 0, 0}, mx = 0, glob[4], gmx;
     for (size_t i = 0; i < s.faces.size(); ++i) {
