@@ -194,6 +194,12 @@ int run(MPI_Comm comm) {
             fluid ? fluid->params().rho : 0.0, fluid ? &fluid->cells() : nullptr);
   pb.set_boundaries(&bcs);
   pb.set_rigid_body_modes(solid != nullptr);
+  if (PcdOperators::requested()) {
+    if (!fluid)
+      throw InputError("-fieldsplit_pressure_pc_type pcd needs a fluid (-physics fluid): use "
+                       "another preconditioner for a solid-only scene");
+    pb.set_pcd(std::make_unique<PcdOperators>(space, mesh, *fluid, bcs));
+  }
   pb.setup_solver();
   Monitors mon;
   mon.setup(mesh, space, fluid, exact.get());
@@ -482,6 +488,7 @@ int run(MPI_Comm comm) {
 
 int main(int argc, char **argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  fsi::register_pcd_preconditioner();
   int code = 0;
   MPI_Comm comm = PETSC_COMM_WORLD;
   try {

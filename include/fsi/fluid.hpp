@@ -41,6 +41,12 @@ public:
   }
   const FluidParams &params() const { return p_; }
   const std::vector<PetscInt> &cells() const { return cells_; }
+  // P1 pressure-space operators of fluid cell c (index into cells()) on the mesh of t_{n+af},
+  // for the pressure convection-diffusion preconditioner (pcd.hpp): the lumped mass ml and the
+  // operator the momentum Jacobian applies to a velocity, F = rho cm M_lumped + cf (mu L +
+  // rho N(v - w)), L the Laplacian, N the convection by the cell's mean velocity.
+  void pressure_operators(const StepContext &ctx, size_t c, double ml[4], double F[4][4],
+                          PetscInt pdof[4]) const;
 
 private:
   struct Element; // gathered nodal data of one cell

@@ -11,6 +11,7 @@
 #include "fsi/boundary.hpp"
 #include "fsi/fluid.hpp"
 #include "fsi/mesh_motion.hpp"
+#include "fsi/pcd.hpp"
 #include "fsi/physics_module.hpp"
 #include "fsi/space.hpp"
 #include <memory>
@@ -52,6 +53,8 @@ public:
   void set_exact(const ExactFlow *e) { exact_ = e; }
   // With a field split, give the velocity block the rigid-body modes as near null space.
   void set_rigid_body_modes(bool on) { rigid_modes_ = on; }
+  // F_p and M_p of the pcd Schur preconditioner (pcd.hpp), assembled with each Jacobian.
+  void set_pcd(std::unique_ptr<PcdOperators> p) { pcd_ = std::move(p); }
   void setup_solver(); // after modules and boundaries
 
   // Initial state at t = 0: rest, or the exact flow (-ic rest|exact).
@@ -108,6 +111,7 @@ private:
   std::vector<std::unique_ptr<PhysicsModule>> modules_;
   Boundaries *bcs_ = nullptr;
   std::unique_ptr<MeshMotion> motion_;
+  std::unique_ptr<PcdOperators> pcd_;
   const ExactFlow *exact_ = nullptr;
 
   Vec U_ = nullptr, Vn_ = nullptr, An_ = nullptr, F_ = nullptr, Dn_ = nullptr, work_ = nullptr;

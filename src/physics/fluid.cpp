@@ -217,4 +217,32 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
   if (fast) assembler_.end(J);
 }
 
+// P1 operators on the pressure space for the pressure convection-diffusion preconditioner.
+void FluidModule::pressure_operators(const StepContext &ctx, size_t c, double ml[4], double F[4][4],
+                                     PetscInt pdof[4]) const {
+  Element e;
+  gather(ctx, cells_[c], e);
+  const double vol = e.geo.absdet / 6.0;
+  // Mean convective velocity: P2 vertex functions integrate to -vol/20, edge functions to vol/5.
+  double cbar[3] = {};
+  if (!p_.stokes)
+    for (int i = 0; i < 3; ++i) {
+      for (int a = 0; a < 4; ++a)
+        cbar[i] += -e.v[a][i] / 20.0 - e.w[a][i] / 4.0;
+      for (int a = 4; a < 10; ++a)
+        cbar[i] += e.v[a][i] / 5.0;
+    }
+  const double(&g)[4][3] = e.geo.grad_lambda;
+  const double cm = ctx.mass_shift(), cf = ctx.stiff_shift();
+  for (int a = 0; a < 4; ++a) {
+    pdof[a] = e.pdof[a];
+    ml[a] = 0.25 * vol;
+    for (int b = 0; b < 4; ++b) {
+      const double L = vol * (g[a][0] * g[b][0] + g[a][1] * g[b][1] + g[a][2] * g[b][2]);
+      const double N = 0.25 * vol * (cbar[0] * g[b][0] + cbar[1] * g[b][1] + cbar[2] * g[b][2]);
+      F[a][b] = (a == b ? p_.rho * cm * ml[a] : 0.0) + cf * (p_.mu * L + p_.rho * N);
+    }
+  }
+}
+
 } // namespace fsi

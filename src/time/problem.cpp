@@ -595,6 +595,7 @@ void Problem::jacobian(Vec U, Mat J) {
   FSI_CALL(VecRestoreArrayRead(Dloc_, &dn));
   FSI_CALL(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   FSI_CALL(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  if (pcd_) pcd_->assemble(ctx_);
   cost_.jacobians++;
   cost_.jacobian_time += MPI_Wtime() - t0;
   FSI_CALL(PetscLogStagePop());
