@@ -80,6 +80,9 @@ struct Space {
   // Mask over local dofs: the pressure dofs of the vertices of `cells` (local cell indices),
   // the same on every rank that sees a vertex.
   std::vector<char> pressure_dofs_of(const std::vector<PetscInt> &cells) const;
+  // A mask over local dofs made consistent across ranks: a dof marked on any rank is marked on
+  // every rank that sees it.
+  std::vector<char> mark_on_all_ranks(const std::vector<char> &marked) const;
 };
 
 } // namespace fsi

@@ -413,26 +413,28 @@ std::vector<DofNode> Space::boundary_velocity_nodes(const Mesh &mesh,
 }
 
 std::vector<char> Space::pressure_dofs_of(const std::vector<PetscInt> &cells) const {
-  // Mark locally, sum over ranks, read back: a vertex next to a listed cell on any rank is
-  // marked on every rank that sees it.
-  Vec l = create_local(), g = create_global();
-  PetscScalar *la;
-  FSI_CALL(VecZeroEntries(l));
-  FSI_CALL(VecZeroEntries(g));
-  FSI_CALL(VecGetArray(l, &la));
+  std::vector<char> marked(n_local, 0);
   for (PetscInt k : cells)
     for (int b = 0; b < 4; ++b)
-      la[cell_pdof[4 * k + b]] = 1;
+      marked[cell_pdof[4 * k + b]] = 1;
+  return mark_on_all_ranks(marked);
+}
+
+std::vector<char> Space::mark_on_all_ranks(const std::vector<char> &marked) const {
+  // Mark locally, sum over ranks, read back.
+  Vec l = create_local(), g = create_global();
+  PetscScalar *la;
+  FSI_CALL(VecZeroEntries(g));
+  FSI_CALL(VecGetArray(l, &la));
+  for (PetscInt d = 0; d < n_local; ++d)
+    la[d] = marked[d] ? 1.0 : 0.0;
   FSI_CALL(VecRestoreArray(l, &la));
   add_to_global(l, g);
   to_local(g, l);
   std::vector<char> mask(n_local, 0);
   FSI_CALL(VecGetArray(l, &la));
-  for (PetscInt k = 0; k < n_cells(); ++k)
-    for (int b = 0; b < 4; ++b) {
-      const PetscInt d = cell_pdof[4 * k + b];
-      mask[d] = PetscRealPart(la[d]) > 0.5;
-    }
+  for (PetscInt d = 0; d < n_local; ++d)
+    mask[d] = PetscRealPart(la[d]) > 0.5;
   FSI_CALL(VecRestoreArray(l, &la));
   FSI_CALL(VecDestroy(&l));
   FSI_CALL(VecDestroy(&g));

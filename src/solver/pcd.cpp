@@ -123,6 +123,7 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
   Vec g = space.create_global(), loc = space.create_local();
   const PetscInt *idx;
   PetscScalar *a;
+  const PetscScalar *la;
   FSI_CALL(VecSet(g, -1.0));
   FSI_CALL(ISGetIndices(space.is_pressure, &idx));
   FSI_CALL(VecGetArray(g, &a));
@@ -132,31 +133,21 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
   FSI_CALL(ISRestoreIndices(space.is_pressure, &idx));
   space.to_local(g, loc);
   pindex_.assign(space.n_local, -1);
-  const PetscScalar *la;
   FSI_CALL(VecGetArrayRead(loc, &la));
   for (PetscInt d = 0; d < space.n_local; ++d)
     pindex_[d] = (PetscInt)PetscRealPart(la[d]);
   FSI_CALL(VecRestoreArrayRead(loc, &la));
+  FSI_CALL(VecDestroy(&g));
+  FSI_CALL(VecDestroy(&loc));
 
   // Pressure dofs on the fluid's traction boundaries, marked alike on every rank that sees them.
-  FSI_CALL(VecZeroEntries(loc));
-  FSI_CALL(VecZeroEntries(g));
-  FSI_CALL(VecGetArray(loc, &a));
+  std::vector<char> outflow(space.n_local, 0);
   for (auto &bc : bcs.list())
     if (bc.fluid_traction())
       for (auto &f : bc.faces)
         for (int i = 0; i < 3; ++i)
-          a[f.pdof[i]] = 1.0;
-  FSI_CALL(VecRestoreArray(loc, &a));
-  space.add_to_global(loc, g);
-  space.to_local(g, loc);
-  outflow_.assign(space.n_local, 0);
-  FSI_CALL(VecGetArrayRead(loc, &la));
-  for (PetscInt d = 0; d < space.n_local; ++d)
-    outflow_[d] = PetscRealPart(la[d]) > 0;
-  FSI_CALL(VecRestoreArrayRead(loc, &la));
-  FSI_CALL(VecDestroy(&g));
-  FSI_CALL(VecDestroy(&loc));
+          outflow[f.pdof[i]] = 1;
+  outflow_ = space.mark_on_all_ranks(outflow);
 
   std::vector<char> in_fluid(space.n_cells(), 0);
   for (PetscInt k : fluid.cells())
