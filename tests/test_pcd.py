@@ -1,6 +1,6 @@
 """The pcd Schur preconditioner (petsc_options/fieldsplit_pcd.opts, include/fsi/pcd.hpp), 2 ranks:
 - it solves the same problem: pipe and FSI tube (held pressure dofs, moving mesh) agree with MUMPS;
-- it is exactly selfp in the mass-dominated limit (Stokes, tiny dt): same Krylov counts;
+- it is exactly selfp in the mass-dominated limit (Stokes, tiny dt): same Krylov counts (1 rank);
 - it sees convection: refining the pipe at a fixed dt (Courant number 1 -> 2), its Krylov count per
   Newton step grows clearly less than selfp's (measured 1.31x vs 1.50x) and stays below it;
 - bad option combinations are one-line errors."""
@@ -44,13 +44,15 @@ if d.code == 0 and pcd_run.code == 0:
         a, b = d.monitor[-1][col], pcd_run.monitor[-1][col]
         check(abs(a - b) <= 1e-6 * abs(a), f"pipe {col}: pcd {b:.9e} = direct {a:.9e}")
 
-# Mass-dominated limit: identical to selfp.
+# Mass-dominated limit: identical to selfp.  One rank: on two, Krylov counts vary by +-2 from run
+# to run (parallel BoomerAMG), on one they are reproducible.
 stokes = ["-fluid_model", "stokes", "-ts_dt", "1e-5", "-ts_max_steps", "2"]
-a = run(PIPE, np=2, extra=pipe + ["-mesh_h", "0.0026"] + stokes, presets=("fieldsplit_ilu",))
-b = run(PIPE, np=2, extra=pipe + ["-mesh_h", "0.0026"] + stokes, presets=("fieldsplit_pcd",))
+a = run(PIPE, np=1, extra=pipe + ["-mesh_h", "0.0026"] + stokes, presets=("fieldsplit_ilu",))
+b = run(PIPE, np=1, extra=pipe + ["-mesh_h", "0.0026"] + stokes, presets=("fieldsplit_pcd",))
+check(a.code == 0 and b.code == 0, "small dt: selfp and pcd converge")
 if a.code == 0 and b.code == 0:
     ka, kb = a.summary["iterations"]["krylov_total"], b.summary["iterations"]["krylov_total"]
-    check(abs(ka - kb) <= 1, f"small dt: pcd {kb} = selfp {ka} Krylov iterations")
+    check(ka == kb, f"small dt: pcd {kb} = selfp {ka} Krylov iterations")
 
 # FSI tube: pressure dofs held outside the fluid, moving mesh.
 tube = ["-ts_max_steps", "10"]
