@@ -194,6 +194,8 @@ int run(MPI_Comm comm) {
             fluid ? fluid->params().rho : 0.0, fluid ? &fluid->cells() : nullptr);
   pb.set_boundaries(&bcs);
   pb.set_rigid_body_modes(solid != nullptr);
+  if (FluidSolidSplit::requested(fluid != nullptr, solid != nullptr))
+    pb.set_fluid_solid_split(std::make_unique<FluidSolidSplit>(space, solid->cells()));
   if (PcdOperators::requested()) {
     if (!fluid)
       throw InputError("-fieldsplit_pressure_pc_type pcd needs a fluid (-physics fluid): use "

@@ -55,6 +55,11 @@ def run(opts, np=1, extra=(), presets=("direct",), timeout=900):
     return Run(p.returncode, p.stdout, outdir)
 
 
+def krylov_per_newton(r):
+    it = r.summary["iterations"]
+    return it["krylov_total"] / it["newton_total"]
+
+
 def check(cond, msg):
     print(("PASS: " if cond else "FAIL: ") + msg)
     if not cond:

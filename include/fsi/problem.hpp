@@ -10,6 +10,7 @@
 #include "fsi/analytic.hpp"
 #include "fsi/boundary.hpp"
 #include "fsi/fluid.hpp"
+#include "fsi/fluid_solid_split.hpp"
 #include "fsi/mesh_motion.hpp"
 #include "fsi/pcd.hpp"
 #include "fsi/physics_module.hpp"
@@ -55,6 +56,9 @@ public:
   void set_rigid_body_modes(bool on) { rigid_modes_ = on; }
   // F_p and M_p of the pcd Schur preconditioner (pcd.hpp), assembled with each Jacobian.
   void set_pcd(std::unique_ptr<PcdOperators> p) { pcd_ = std::move(p); }
+  // Velocity block split into fluid and solid (fluid_solid_split.hpp), set up on the first
+  // Jacobian.
+  void set_fluid_solid_split(std::unique_ptr<FluidSolidSplit> s) { split_ = std::move(s); }
   void setup_solver(); // after modules and boundaries
 
   // Initial state at t = 0: rest, or the exact flow (-ic rest|exact).
@@ -112,6 +116,7 @@ private:
   Boundaries *bcs_ = nullptr;
   std::unique_ptr<MeshMotion> motion_;
   std::unique_ptr<PcdOperators> pcd_;
+  std::unique_ptr<FluidSolidSplit> split_;
   const ExactFlow *exact_ = nullptr;
 
   Vec U_ = nullptr, Vn_ = nullptr, An_ = nullptr, F_ = nullptr, Dn_ = nullptr, work_ = nullptr;

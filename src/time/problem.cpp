@@ -599,6 +599,11 @@ void Problem::jacobian(Vec U, Mat J) {
   cost_.jacobians++;
   cost_.jacobian_time += MPI_Wtime() - t0;
   FSI_CALL(PetscLogStagePop());
+  if (split_ && !split_->configured()) { // the preconditioner's first setup: solver time
+    KSP ksp;
+    FSI_CALL(SNESGetKSP(snes_, &ksp));
+    split_->configure(ksp, J_);
+  }
 }
 
 } // namespace fsi
