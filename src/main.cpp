@@ -196,12 +196,8 @@ int run(MPI_Comm comm) {
   pb.set_rigid_body_modes(solid != nullptr);
   if (FluidSolidSplit::requested(fluid != nullptr, solid != nullptr))
     pb.set_fluid_solid_split(std::make_unique<FluidSolidSplit>(space, solid->cells()));
-  if (PcdOperators::requested()) {
-    if (!fluid)
-      throw InputError("-fieldsplit_pressure_pc_type pcd needs a fluid (-physics fluid): use "
-                       "another preconditioner for a solid-only scene");
+  if (PcdOperators::requested(fluid != nullptr))
     pb.set_pcd(std::make_unique<PcdOperators>(space, mesh, *fluid, bcs));
-  }
   pb.setup_solver();
   Monitors mon;
   mon.setup(mesh, space, fluid, exact.get());

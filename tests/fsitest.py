@@ -60,6 +60,20 @@ def krylov_per_newton(r):
     return it["krylov_total"] / it["newton_total"]
 
 
+def krylov_growth(opts, presets, hs, extra, np=2):
+    """Run each preset on the meshes hs = (coarse, fine) with the same options; returns the Krylov
+    iterations per Newton step k[preset, h], the growth g[preset] = fine / coarse and the runs."""
+    k, g, runs = {}, {}, {}
+    for p in presets:
+        for h in hs:
+            r = runs[p, h] = run(opts, np=np, extra=list(extra) + ["-mesh_h", h], presets=(p,))
+            check(r.code == 0, f"{p} h {h} converges")
+            k[p, h] = krylov_per_newton(r) if r.code == 0 else float("nan")
+        g[p] = k[p, hs[1]] / k[p, hs[0]]
+        print(f"Krylov/Newton {p}: {k[p, hs[0]]:.1f} -> {k[p, hs[1]]:.1f} (x{g[p]:.2f})")
+    return k, g, runs
+
+
 def check(cond, msg):
     print(("PASS: " if cond else "FAIL: ") + msg)
     if not cond:

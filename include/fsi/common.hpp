@@ -28,6 +28,16 @@ struct PetscFailure : std::runtime_error {
 
 [[noreturn]] void throw_petsc(PetscErrorCode ierr, const char *file, int line);
 
+// Sum of n over the lower ranks of comm: where this rank's entries start in a distributed
+// numbering (0 on rank 0).
+inline PetscInt rank_offset(MPI_Comm comm, PetscInt n) {
+  PetscInt start = 0;
+  MPI_Exscan(&n, &start, 1, MPIU_INT, MPI_SUM, comm);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  return rank == 0 ? 0 : start;
+}
+
 } // namespace fsi
 
 // Call a PETSc function from C++ code that does not return PetscErrorCode.

@@ -26,8 +26,9 @@ void register_pcd_preconditioner();
 
 class PcdOperators {
 public:
-  // True when the options select the pcd PC for the pressure split (and check the options).
-  static bool requested();
+  // True when the options select the pcd PC for the pressure split; throws InputError when they
+  // do on a scene without a fluid or without the selfp Schur matrix.
+  static bool requested(bool fluid);
   PcdOperators(const Space &space, const Mesh &mesh, const FluidModule &fluid,
                const Boundaries &bcs);
   ~PcdOperators();

@@ -85,4 +85,8 @@ struct Space {
   std::vector<char> mark_on_all_ranks(const std::vector<char> &marked) const;
 };
 
+// Give the velocity unknowns in `is` (3 per node, nodes at node_X) the six rigid-body modes as
+// near null space, for algebraic multigrid (GAMG) on the block a field split extracts with it.
+void compose_rigid_body_modes(IS is, const std::vector<double> &node_X);
+
 } // namespace fsi

@@ -420,6 +420,18 @@ std::vector<char> Space::pressure_dofs_of(const std::vector<PetscInt> &cells) co
   return mark_on_all_ranks(marked);
 }
 
+void compose_rigid_body_modes(IS is, const std::vector<double> &node_X) {
+  MPI_Comm comm = PetscObjectComm((PetscObject)is);
+  Vec X;
+  FSI_CALL(
+      VecCreateMPIWithArray(comm, 3, (PetscInt)node_X.size(), PETSC_DECIDE, node_X.data(), &X));
+  MatNullSpace ns;
+  FSI_CALL(MatNullSpaceCreateRigidBody(X, &ns));
+  FSI_CALL(PetscObjectCompose((PetscObject)is, "nearnullspace", (PetscObject)ns));
+  FSI_CALL(MatNullSpaceDestroy(&ns));
+  FSI_CALL(VecDestroy(&X));
+}
+
 std::vector<char> Space::mark_on_all_ranks(const std::vector<char> &marked) const {
   // Mark locally, sum over ranks, read back.
   Vec l = create_local(), g = create_global();

@@ -59,10 +59,10 @@ LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
     FSI_CALL(PetscSectionGetFieldOffset(ls, v + space.vStart, 1, &pdof[v]));
   }
   // Compact numbering of vertices: owners number theirs, ghosts learn theirs by a scatter.
-  PetscInt nown = 0, start = 0;
+  PetscInt nown = 0;
   for (PetscInt v = 0; v < nv; ++v)
     nown += space.owned(pdof[v]);
-  MPI_Exscan(&nown, &start, 1, MPIU_INT, MPI_SUM, comm);
+  const PetscInt start = rank_offset(comm, nown);
   {
     Vec g = space.create_global(), l = space.create_local();
     PetscScalar *ga;

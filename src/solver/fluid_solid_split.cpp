@@ -1,25 +1,15 @@
 #include "fsi/fluid_solid_split.hpp"
-#include "fsi/common.hpp"
-#include <string>
+#include "fsi/options.hpp"
 
 namespace fsi {
 
-namespace {
-std::string option(const char *name) {
-  char value[64] = "";
-  PetscBool set = PETSC_FALSE;
-  FSI_CALL(PetscOptionsGetString(nullptr, nullptr, name, value, sizeof value, &set));
-  return set ? value : "";
-}
-} // namespace
-
 bool FluidSolidSplit::requested(bool fluid, bool solid) {
-  if (option("-fieldsplit_velocity_pc_type") != "fieldsplit") return false;
+  if (opt::string("fieldsplit_velocity_pc_type", "") != "fieldsplit") return false;
   if (!fluid || !solid)
     throw InputError("-fieldsplit_velocity_pc_type fieldsplit splits the velocity block into fluid "
                      "and solid: it needs -physics fluid,solid (use petsc_options/"
                      "fieldsplit_ilu.opts or solid_amg.opts for one physics)");
-  if (option("-pc_type") != "fieldsplit")
+  if (opt::string("pc_type", "") != "fieldsplit")
     throw InputError("-fieldsplit_velocity_pc_type fieldsplit needs the outer -pc_type fieldsplit "
                      "(see petsc_options/fieldsplit_fsi.opts)");
   return true;
@@ -52,12 +42,9 @@ void FluidSolidSplit::configure(KSP ksp, Mat J) {
   space_.add_to_global(loc, g);
 
   // Index sets in the velocity block's numbering (is_velocity's position), node-blocked by 3.
-  PetscInt n, start = 0;
+  PetscInt n;
   FSI_CALL(ISGetLocalSize(space_.is_velocity, &n));
-  MPI_Exscan(&n, &start, 1, MPIU_INT, MPI_SUM, comm);
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  if (rank == 0) start = 0;
+  const PetscInt start = rank_offset(comm, n);
   const PetscInt *idx;
   const PetscScalar *ga;
   std::vector<PetscInt> fluid, solid;
@@ -80,13 +67,7 @@ void FluidSolidSplit::configure(KSP ksp, Mat J) {
   FSI_CALL(ISCreateGeneral(comm, (PetscInt)fluid.size(), fluid.data(), PETSC_COPY_VALUES, &isf));
   FSI_CALL(ISCreateGeneral(comm, (PetscInt)solid.size(), solid.data(), PETSC_COPY_VALUES, &iss));
   FSI_CALL(ISSetBlockSize(iss, 3));
-  Vec X;
-  FSI_CALL(VecCreateMPIWithArray(comm, 3, (PetscInt)xyz.size(), PETSC_DECIDE, xyz.data(), &X));
-  MatNullSpace ns;
-  FSI_CALL(MatNullSpaceCreateRigidBody(X, &ns));
-  FSI_CALL(PetscObjectCompose((PetscObject)iss, "nearnullspace", (PetscObject)ns));
-  FSI_CALL(MatNullSpaceDestroy(&ns));
-  FSI_CALL(VecDestroy(&X));
+  compose_rigid_body_modes(iss, xyz);
   FSI_CALL(PCFieldSplitSetIS(vpc, "fluid", isf));
   FSI_CALL(PCFieldSplitSetIS(vpc, "solid", iss));
   FSI_CALL(ISDestroy(&isf));

@@ -1,6 +1,7 @@
 // Pressure convection-diffusion preconditioner: the operators (PcdOperators) and the PETSc PC
 // type "pcd" that applies S^{-1} ~ (rho cm M_p)^{-1} F_p Sp^{-1} (see pcd.hpp).
 #include "fsi/pcd.hpp"
+#include "fsi/options.hpp"
 
 #include <petsc/private/pcimpl.h>
 
@@ -91,16 +92,12 @@ void register_pcd_preconditioner() {
   FSI_CALL(PCRegister("pcd", pcd_create));
 }
 
-bool PcdOperators::requested() {
-  char type[64] = "";
-  PetscBool set = PETSC_FALSE;
-  FSI_CALL(PetscOptionsGetString(nullptr, nullptr, "-fieldsplit_pressure_pc_type", type,
-                                 sizeof type, &set));
-  if (!set || std::string(type) != "pcd") return false;
-  char pre[64] = "";
-  FSI_CALL(PetscOptionsGetString(nullptr, nullptr, "-pc_fieldsplit_schur_precondition", pre,
-                                 sizeof pre, &set));
-  if (!set || std::string(pre) != "selfp")
+bool PcdOperators::requested(bool fluid) {
+  if (opt::string("fieldsplit_pressure_pc_type", "") != "pcd") return false;
+  if (!fluid)
+    throw InputError("-fieldsplit_pressure_pc_type pcd needs a fluid (-physics fluid): use "
+                     "another preconditioner for a solid-only scene");
+  if (opt::string("pc_fieldsplit_schur_precondition", "") != "selfp")
     throw InputError("-fieldsplit_pressure_pc_type pcd works on the selfp matrix: add "
                      "-pc_fieldsplit_schur_precondition selfp (see "
                      "petsc_options/fieldsplit_pcd.opts)");
@@ -111,13 +108,10 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
                            const Boundaries &bcs)
     : space_(space), fluid_(fluid) {
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
-  PetscInt n, N, start = 0;
+  PetscInt n, N;
   FSI_CALL(ISGetLocalSize(space.is_pressure, &n));
   FSI_CALL(ISGetSize(space.is_pressure, &N));
-  MPI_Exscan(&n, &start, 1, MPIU_INT, MPI_SUM, comm);
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  if (rank == 0) start = 0;
+  const PetscInt start = rank_offset(comm, n);
 
   // Row of every local pressure dof in the pressure block (the split's ordering: is_pressure's).
   Vec g = space.create_global(), loc = space.create_local();

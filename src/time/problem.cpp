@@ -149,19 +149,8 @@ void Problem::setup_solver() {
   PetscBool fs;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
   if (fs) {
-    if (rigid_modes_) {
-      // The six rigid-body modes as the velocity block's near null space (the solid's
-      // elasticity operator): algebraic multigrid (GAMG) builds its coarse spaces from them.
-      Vec xyz;
-      FSI_CALL(VecCreateMPIWithArray(comm, 3, (PetscInt)space_.velocity_node_X.size(), PETSC_DECIDE,
-                                     space_.velocity_node_X.data(), &xyz));
-      MatNullSpace ns;
-      FSI_CALL(MatNullSpaceCreateRigidBody(xyz, &ns));
-      FSI_CALL(
-          PetscObjectCompose((PetscObject)space_.is_velocity, "nearnullspace", (PetscObject)ns));
-      FSI_CALL(MatNullSpaceDestroy(&ns));
-      FSI_CALL(VecDestroy(&xyz));
-    }
+    // The solid's elasticity operator: GAMG builds its coarse spaces from the rigid-body modes.
+    if (rigid_modes_) compose_rigid_body_modes(space_.is_velocity, space_.velocity_node_X);
     FSI_CALL(PCFieldSplitSetIS(pc, "velocity", space_.is_velocity));
     FSI_CALL(PCFieldSplitSetIS(pc, "pressure", space_.is_pressure));
   }
