@@ -21,8 +21,8 @@ cases = [
     ("mesh slip on a curved wall", ["-ale_motion", "laplace", "-ale_slip_boundaries", "wall"], "axis-aligned plane"),
     ("unknown mesh motion", ["-ale_motion", "elastic"], "elastic"),
     ("mesh without the fluid region", ["-fluid_region", "blood"], "blood"),
-    ("zero time step", ["-ts_scheme", "alpha", "-ts_dt", "0"], "ts_dt"),
-    ("negative time step", ["-ts_scheme", "alpha", "-ts_dt", "-1e-3"], "ts_dt"),
+    ("zero time step", ["-ts_type", "alpha", "-ts_dt", "0"], "ts_dt"),
+    ("negative time step", ["-ts_type", "alpha", "-ts_dt", "-1e-3"], "ts_dt"),
     ("wall shear on a missing surface", ["-hemo_surfaces", "aorta"], "aorta"),
     ("negative checkpoint interval", ["-checkpoint_every", "-1"], "checkpoint_every"),
     ("missing restart file", ["-restart", "/nonexistent/checkpoint.h5"], "/nonexistent/checkpoint.h5"),
@@ -44,7 +44,7 @@ ckfile = os.path.join(ck.dir, "checkpoint.h5")
 check(ck.code == 0 and os.path.exists(ckfile), "a checkpoint to restart from")
 cases += [
     ("restart file from another mesh", ["-restart", ckfile, "-mesh_params", "R=0.005,L=0.01,ncirc=30"], "another mesh"),
-    ("restart file from another scene", ["-restart", ckfile, "-ts_scheme", "alpha", "-ts_dt", "0.1"], "another scene"),
+    ("restart file from another scene", ["-restart", ckfile, "-ts_type", "alpha", "-ts_dt", "0.1"], "another scene"),
 ]
 for name, extra, needle, sc in [c + ("poiseuille",) for c in cases] + [c + ("mr_uniaxial",) for c in solid_cases]:
     r = run(scene(sc), extra=extra)

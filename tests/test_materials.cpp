@@ -1,7 +1,7 @@
 // Constitutive laws: P against finite differences of W, the tangent against finite differences
 // of P (relative error < 1e-6, issue: hyperelastic solid), inverted elements and bad parameters.
 #include "fsi/common.hpp"
-#include "fsi/material.hpp"
+#include "fsi/physics/material.hpp"
 
 #include <algorithm>
 #include <cmath>

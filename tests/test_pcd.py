@@ -10,7 +10,7 @@ from fsitest import SRC, check, finish, krylov_growth, run
 PIPE = os.path.join(SRC, "examples", "pipe", "pipe.opts")
 TUBE = os.path.join(SRC, "examples", "tube", "tube.opts")
 pipe = ["-mesh_params", "R=0.005,L=0.02,ncirc=0", "-bc_inlet_ramp", "0", "-snes_linesearch_type",
-        "basic", "-ts_adapt", "none", "-ts_dt", "5.2e-3", "-ts_max_steps", "3", "-out_fields_every", "0"]
+        "basic", "-ts_adapt_type", "none", "-ts_dt", "5.2e-3", "-ts_max_steps", "3", "-out_fields_every", "0"]
 
 
 

@@ -9,7 +9,7 @@
 3. Step cutting (issue 5): the bar at 150 kPa in ONE load step inverts, then diverges at half the
    step; cut to a quarter it converges, grows back, and ends at the answer of 8 load steps
    (a static hyperelastic solution does not depend on the load path) to 1e-6; every cut is logged.
-   With -ts_dt_min above what the load needs, the run stops at the minimum with exit 3, the
+   With -ts_adapt_dt_min above what the load needs, the run stops at the minimum with exit 3, the
    reason, and a checkpoint of the last converged state."""
 from fsitest import check, finish, run, scene
 
@@ -36,7 +36,7 @@ import os
 from fsitest import SRC
 bar = os.path.join(SRC, "examples", "bar", "bar.opts")
 r = run(bar, extra=["-bc_zmax_value", "-1e6", "-ts_max_steps", "1", "-out_fields_every", "0",
-                    "-ts_adapt", "none"])
+                    "-ts_adapt_type", "none"])
 check(r.code == 3, f"inverted element: exit code {r.code} (expected 3)")
 check("inverted" in r.out and "nan" not in r.out.lower(), "inverted element: message names it, no NaN printed")
 check(r.summary["converged"] is False and "inverted" in r.summary["reason"], "summary: converged false, reason given")
@@ -58,9 +58,9 @@ if ref.code == 0 and cut.code == 0:
     check(abs(cut.monitor[-1]["time"] - 1) < 1e-12, "it lands exactly on the end of the load")
 
 stop = run(bar, extra=["-bc_zmax_value", "-1.5e5", "-ts_max_steps", "1", "-out_fields_every", "0",
-                       "-ts_dt_min", "0.4"])
+                       "-ts_adapt_dt_min", "0.4"])
 check(stop.code == 3, f"dt at its minimum: exit code {stop.code} (expected 3)")
-check(stop.summary["converged"] is False and "ts_dt_min" in stop.summary["reason"]
-      and "checkpoint" in stop.summary["reason"], "reason names -ts_dt_min and the checkpoint")
+check(stop.summary["converged"] is False and "ts_adapt_dt_min" in stop.summary["reason"]
+      and "checkpoint" in stop.summary["reason"], "reason names -ts_adapt_dt_min and the checkpoint")
 check(os.path.exists(os.path.join(stop.dir, "checkpoint.h5")), "checkpoint of the last converged state written")
 finish()

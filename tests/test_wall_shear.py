@@ -33,7 +33,7 @@ with h5py.File(os.path.join(r.dir, "hemo.h5")) as f:
     check(np.all(wss[:, 2] > 0), "Poiseuille WSS points downstream on every face")
 check(os.path.exists(os.path.join(r.dir, "hemo.xdmf")), "hemo.xdmf written")
 
-r = run(scene("poiseuille"), np=1, extra=["-hemo_surfaces", "wall", "-ts_scheme", "alpha",
+r = run(scene("poiseuille"), np=1, extra=["-hemo_surfaces", "wall", "-ts_type", "alpha",
         "-ic", "exact", "-ts_dt", "0.1", "-ts_max_steps", "5"])
 check(r.code == 0, "Poiseuille time-dependent run succeeds")
 h = r.summary["hemodynamics"]["wall"]

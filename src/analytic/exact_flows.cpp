@@ -1,6 +1,7 @@
-#include "fsi/analytic.hpp"
-#include "fsi/options.hpp"
+#include "fsi/analytic/analytic.hpp"
+#include "fsi/scene/options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
@@ -144,25 +145,26 @@ std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu) {
 
 double Waveform::operator()(double t) const {
   double ramp = (ramp_time > 0 && t < ramp_time) ? 0.5 * (1 - std::cos(M_PI * t / ramp_time)) : 1.0;
-  if (kind == "step") return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
-  if (kind == "pulse") { // sin^2 bump over [0, t_off]: value and slope continuous (second order)
+  if (kind == Step) return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
+  if (kind == Pulse) { // sin^2 bump over [0, t_off]: value and slope continuous (second order)
     if (t >= t_off) return 0.0;
     const double s = std::sin(M_PI * t / t_off);
     return s * s;
   }
-  if (kind == "cosine") return ramp * (offset + std::cos(2 * M_PI * t / period));
-  if (kind == "sine") return ramp * (offset + std::sin(2 * M_PI * t / period));
-  if (kind == "linear") return ramp * t / period;
+  if (kind == Cosine) return ramp * (offset + std::cos(2 * M_PI * t / period));
+  if (kind == Sine) return ramp * (offset + std::sin(2 * M_PI * t / period));
+  if (kind == Linear) return ramp * t / period;
   return ramp;
 }
 
 Waveform Waveform::from_options(const std::string &prefix) {
   Waveform w;
-  w.kind = opt::choice(prefix + "waveform", "constant",
-                       {"constant", "step", "pulse", "cosine", "sine", "linear"});
-  if (w.kind == "step" || w.kind == "pulse") w.t_off = opt::required_positive(prefix + "t_off");
-  if (w.kind == "linear") w.period = opt::required_positive(prefix + "period");
-  if (w.kind == "cosine" || w.kind == "sine") {
+  const std::vector<std::string> kinds = {"constant", "step", "pulse", "cosine", "sine", "linear"};
+  const std::string k = opt::choice(prefix + "waveform", "constant", kinds);
+  w.kind = Kind(std::find(kinds.begin(), kinds.end(), k) - kinds.begin()); // resolved once
+  if (w.kind == Step || w.kind == Pulse) w.t_off = opt::required_positive(prefix + "t_off");
+  if (w.kind == Linear) w.period = opt::required_positive(prefix + "period");
+  if (w.kind == Cosine || w.kind == Sine) {
     w.period = opt::required_positive(prefix + "period");
     w.offset = opt::real(prefix + "offset", 0.0);
   }

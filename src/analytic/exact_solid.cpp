@@ -1,5 +1,5 @@
-#include "fsi/exact_solid.hpp"
-#include "fsi/options.hpp"
+#include "fsi/analytic/exact_solid.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <cmath>
 

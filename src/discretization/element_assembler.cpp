@@ -1,4 +1,4 @@
-#include "fsi/element_assembler.hpp"
+#include "fsi/discretization/element_assembler.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "fsi/p2tet.hpp"
+#include "fsi/discretization/p2tet.hpp"
 #include <cmath>
 
 namespace fsi {

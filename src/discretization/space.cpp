@@ -1,5 +1,5 @@
-#include "fsi/space.hpp"
-#include "fsi/p2tet.hpp"
+#include "fsi/discretization/space.hpp"
+#include "fsi/discretization/p2tet.hpp"
 
 #include <algorithm>
 #include <cmath>

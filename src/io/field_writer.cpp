@@ -1,4 +1,4 @@
-#include "fsi/field_writer.hpp"
+#include "fsi/io/field_writer.hpp"
 
 #include <fstream>
 #include <petscviewerhdf5.h>

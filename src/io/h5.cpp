@@ -1,4 +1,4 @@
-#include "fsi/h5.hpp"
+#include "fsi/io/h5.hpp"
 
 #include <algorithm>
 #include <hdf5.h>

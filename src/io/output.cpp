@@ -1,4 +1,4 @@
-#include "fsi/output.hpp"
+#include "fsi/io/output.hpp"
 
 #include <cmath>
 #include <fstream>

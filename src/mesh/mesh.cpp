@@ -1,5 +1,5 @@
-#include "fsi/mesh.hpp"
-#include "fsi/options.hpp"
+#include "fsi/mesh/mesh.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <fstream>
 #include <gmsh.h>

@@ -1,5 +1,5 @@
-#include "fsi/fluid.hpp"
-#include "fsi/options.hpp"
+#include "fsi/physics/fluid.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <algorithm>
 #include <cstring>

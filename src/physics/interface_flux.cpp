@@ -1,12 +1,13 @@
-#include "fsi/interface_flux.hpp"
+#include "fsi/physics/interface_flux.hpp"
 
 #include <cmath>
 
 namespace fsi {
 
 InterfaceMassFlux::InterfaceMassFlux(const Space &space, const Mesh &mesh, const std::string &name,
-                                     const std::vector<PetscInt> &fluid_cells)
-    : space_(space), name_(name), rule_(tri_rule(4)) {
+                                     const std::vector<PetscInt> &fluid_cells,
+                                     const std::vector<double> &material_X)
+    : space_(space), material_X_(material_X), name_(name), rule_(tri_rule(4)) {
   mesh.require_groups({name}, "-ale_interface");
   std::vector<char> in_fluid(space.n_cells(), 0);
   for (PetscInt k : fluid_cells)
@@ -56,7 +57,7 @@ void InterfaceMassFlux::swept(const StepContext &ctx, const BoundaryFace &f, dou
     for (int d = 0; d < 3; ++d) {
       const int v = f.vertex[a];
       Xn[a][d] = ctx.X_np1[3 * v + d] - ctx.dt * ctx.W[3 * v + d];
-      dl[a][d] = space_.X[3 * v + d] + ctx.u_np1(f.vdof[a] + d) - Xn[a][d];
+      dl[a][d] = material_X_[3 * v + d] + ctx.u_np1(f.vdof[a] + d) - Xn[a][d];
     }
   double A[3], B[3], C[3], D[3];
   for (int d = 0; d < 3; ++d) {

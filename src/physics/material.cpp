@@ -1,6 +1,6 @@
-#include "fsi/material.hpp"
+#include "fsi/physics/material.hpp"
 #include "fsi/common.hpp"
-#include "fsi/options.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <cmath>
 

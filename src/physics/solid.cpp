@@ -1,5 +1,5 @@
-#include "fsi/solid.hpp"
-#include "fsi/options.hpp"
+#include "fsi/physics/solid.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <cstring>
 
@@ -22,9 +22,10 @@ SolidParams SolidParams::from_options() {
   return p;
 }
 
-SolidModule::SolidModule(const Space &space, const Mesh &mesh, const SolidParams &p,
+SolidModule::SolidModule(const Space &space, const Mesh &mesh,
+                         const std::vector<double> &material_X, const SolidParams &p,
                          std::unique_ptr<Material> material, const ExactSolid *exact)
-    : space_(space), p_(p), material_(std::move(material)), exact_(exact) {
+    : space_(space), material_X_(material_X), p_(p), material_(std::move(material)), exact_(exact) {
   comm_ = PetscObjectComm((PetscObject)space.dm);
   mesh.require_groups({p.region}, "the solid (-solid_region)");
   cells_ = mesh.cells_in(p.region);
@@ -45,7 +46,7 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh, const SolidParams
 }
 
 void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
-  space_.cell_points(k, space_.X.data(), X);
+  space_.cell_points(k, material_X_.data(), X);
   g.set(X);
 }
 

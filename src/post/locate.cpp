@@ -1,13 +1,14 @@
-#include "fsi/locate.hpp"
-#include "fsi/options.hpp"
-#include "fsi/p2tet.hpp"
+#include "fsi/post/locate.hpp"
+#include "fsi/scene/options.hpp"
+#include "fsi/discretization/p2tet.hpp"
 
 #include <sstream>
 
 namespace fsi {
 
 PointLocation locate_point(const Space &space, const std::vector<PetscInt> &cells,
-                           const double x[3]) {
+                           const double x[3], const double *Xv) {
+  if (!Xv) Xv = space.X.data();
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -15,7 +16,7 @@ PointLocation locate_point(const Space &space, const std::vector<PetscInt> &cell
   PetscInt best_cell = -1;
   for (PetscInt cell : cells) {
     double X[4][3];
-    space.cell_points(cell, space.X.data(), X);
+    space.cell_points(cell, Xv, X);
     TetGeometry g;
     g.set(X);
     double l[4], s = 0;

@@ -1,6 +1,7 @@
-#include "fsi/monitors.hpp"
-#include "fsi/locate.hpp"
-#include "fsi/options.hpp"
+#include "fsi/post/monitors.hpp"
+#include "fsi/post/locate.hpp"
+#include "fsi/run/simulation.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <cmath>
 
@@ -121,7 +122,7 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
   return e;
 }
 
-std::vector<double> Monitors::evaluate(const Problem &pb) {
+std::vector<double> Monitors::evaluate(const Simulation &pb) {
   std::vector<double> out;
   if (!fluid_) return out;
   Vec loc = space_->create_local();

@@ -1,5 +1,6 @@
-#include "fsi/solid_monitors.hpp"
-#include "fsi/options.hpp"
+#include "fsi/post/solid_monitors.hpp"
+#include "fsi/run/simulation.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <cmath>
 
@@ -14,7 +15,7 @@ void SolidMonitors::setup(const Space &space, const SolidModule *solid, const Ex
   if (!solid && (!pts.empty() || energy_))
     throw InputError("-solid_probe_points / -monitor_solid_energy need a solid in the scene");
   for (auto &x : pts) {
-    PointLocation loc = locate_point(space, solid->cells(), x.data());
+    PointLocation loc = locate_point(space, solid->cells(), x.data(), solid->material_X().data());
     if (loc.owner < 0)
       throw InputError("solid probe point " + std::to_string(x[0]) + "," + std::to_string(x[1]) +
                        "," + std::to_string(x[2]) + " lies outside the solid");
@@ -36,7 +37,7 @@ std::vector<std::string> SolidMonitors::columns() const {
   return c;
 }
 
-std::vector<double> SolidMonitors::evaluate(const Problem &pb) {
+std::vector<double> SolidMonitors::evaluate(const Simulation &pb) {
   std::vector<double> out;
   if (!solid_) return out;
   MPI_Comm comm = PetscObjectComm((PetscObject)space_->dm);

@@ -1,5 +1,6 @@
-#include "fsi/wall_shear.hpp"
-#include "fsi/options.hpp"
+#include "fsi/post/wall_shear.hpp"
+#include "fsi/run/simulation.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +10,7 @@ namespace fsi {
 
 void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
                       const ExactFlow *exact, const std::string &out_dir, double t_end,
-                      bool resume) {
+                      const std::string &base) {
   const auto names = opt::list("hemo_surfaces");
   window_ = opt::nonnegative("hemo_window", 0.0);
   start_ = opt::nonnegative("hemo_start", 0.0);
@@ -32,7 +33,7 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
   std::vector<char> in_fluid(space.n_cells(), 0);
   for (PetscInt k : fluid->cells())
     in_fluid[k] = 1;
-  base_ = resume ? "hemo_restart" : "hemo";
+  base_ = base;
   if (rank_ == 0) file_ = std::make_unique<H5File>(out_dir + "/" + base_ + ".h5", H5File::create);
   for (auto &n : names) {
     Surface s;
@@ -82,7 +83,7 @@ std::vector<std::string> WallShear::columns() const {
 }
 
 // tau_w at every face centroid of s on the current configuration.
-void WallShear::compute(Surface &s, const Problem &pb, const PetscScalar *u) {
+void WallShear::compute(Surface &s, const Simulation &pb, const PetscScalar *u) {
   const auto &Xc = pb.coordinates();
   const double mu = fluid_->params().mu;
   s.xf.resize(9 * s.faces.size());
@@ -119,7 +120,7 @@ void WallShear::compute(Surface &s, const Problem &pb, const PetscScalar *u) {
   }
 }
 
-void WallShear::update(const Problem &pb, double dt) {
+void WallShear::update(const Simulation &pb, double dt) {
   if (!active()) return;
   values_.clear();
   const double t = pb.time();
@@ -320,49 +321,31 @@ Json WallShear::summary() const {
   return j;
 }
 
-void WallShear::save(H5File *f) const {
+void WallShear::save(RunState &st) const {
   if (!active()) return;
-  for (auto &s : surf_) {
-    KeyedItems all = gather_sorted(comm_, s.key, s.acc, 3, 4);
-    if (f) {
-      f->write("/hemo/" + s.name + "/keys", all.keys, 3);
-      f->write("/hemo/" + s.name + "/accumulators", all.values, 4);
-    }
-  }
-  if (f) f->write("/hemo/window", {window_start_, window_time_, (double)window_index_, window_});
+  for (auto &s : surf_)
+    st.hemo[s.name] = gather_sorted(comm_, s.key, s.acc, 3, 4);
+  st.hemo_window = {window_start_, window_time_, (double)window_index_, window_};
 }
 
-void WallShear::load(const H5File *f) {
+void WallShear::load(const RunState &st) {
   if (!active()) return;
-  int has = f && f->has("/hemo/window");
-  MPI_Bcast(&has, 1, MPI_INT, 0, comm_);
-  if (!has)
+  if (st.hemo_window.size() != 4)
     throw InputError("the restart file has no wall-shear accumulators: it was written by a "
                      "scene without -hemo_surfaces (drop -hemo_surfaces or restart from a "
                      "matching run)");
   for (auto &s : surf_) {
-    KeyedItems all;
-    int ok = 1;
-    if (f) {
-      ok = f->has("/hemo/" + s.name + "/keys");
-      if (ok) {
-        all.keys = f->read("/hemo/" + s.name + "/keys");
-        all.values = f->read("/hemo/" + s.name + "/accumulators");
-      }
-    }
+    int ok = st.hemo.count(s.name) > 0;
     MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
     if (!ok)
       throw InputError("the restart file has no wall-shear data for surface '" + s.name + "'");
-    if (scatter_by_key(comm_, all, s.key, s.acc, 3, 4) != 0)
+    if (scatter_by_key(comm_, st.hemo.at(s.name), s.key, s.acc, 3, 4) != 0)
       throw InputError("the restart file's wall-shear faces of '" + s.name +
                        "' do not match this mesh (a checkpoint of another mesh?)");
   }
-  std::vector<double> w(4);
-  if (f) w = f->read("/hemo/window");
-  MPI_Bcast(w.data(), 4, MPI_DOUBLE, 0, comm_);
-  window_start_ = w[0];
-  window_time_ = w[1];
-  window_index_ = std::lround(w[2]);
+  window_start_ = st.hemo_window[0];
+  window_time_ = st.hemo_window[1];
+  window_index_ = std::lround(st.hemo_window[2]);
 }
 
 } // namespace fsi

@@ -1,30 +1,25 @@
-#include "fsi/options.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <cstdlib>
 #include <sstream>
 
 namespace fsi {
 
+// PETSc's own words: the error class and the message of the call that failed.
 void throw_petsc(PetscErrorCode ierr, const char *file, int line) {
-  throw PetscFailure("PETSc error " + std::to_string(ierr) + " at " + file + ":" +
-                     std::to_string(line));
+  const char *text = nullptr;
+  char *specific = nullptr;
+  PetscErrorMessage(ierr, &text, &specific);
+  std::string msg = "PETSc error " + std::to_string(ierr);
+  if (text) msg += std::string(" (") + text + ")";
+  if (specific && *specific) msg += std::string(": ") + specific;
+  throw PetscFailure(msg + " at " + file + ":" + std::to_string(line));
 }
 
 namespace opt {
 
 static std::string key(const std::string &name) {
   return "-" + name;
-}
-
-// With -help, every option the app reads is listed with its default, as PETSc does for its own.
-static void help_line(const std::string &name, const std::string &def) {
-  static int asked = -1;
-  if (asked < 0) {
-    PetscBool h = PETSC_FALSE;
-    PetscOptionsHasHelp(nullptr, &h);
-    asked = h ? 1 : 0;
-  }
-  if (asked) PetscPrintf(PETSC_COMM_WORLD, "  -%s <%s>  (fsi_app)\n", name.c_str(), def.c_str());
 }
 
 bool has(const std::string &name) {
@@ -50,7 +45,6 @@ static double parse_real(const std::string &name, const std::string &text) {
 }
 
 double real(const std::string &name, double def) {
-  help_line(name, std::to_string(def));
   std::string s;
   return raw(name, s) ? parse_real(name, s) : def;
 }
@@ -75,7 +69,6 @@ double required_positive(const std::string &name) {
 }
 
 long integer(const std::string &name, long def) {
-  help_line(name, std::to_string(def));
   std::string s;
   if (!raw(name, s)) return def;
   char *end = nullptr;
@@ -86,20 +79,17 @@ long integer(const std::string &name, long def) {
 }
 
 bool flag(const std::string &name, bool def) {
-  help_line(name, def ? "true" : "false");
   PetscBool v = def ? PETSC_TRUE : PETSC_FALSE, set = PETSC_FALSE;
   FSI_CALL(PetscOptionsGetBool(nullptr, nullptr, key(name).c_str(), &v, &set));
   return v;
 }
 
 std::string string(const std::string &name, const std::string &def) {
-  help_line(name, def);
   std::string s;
   return raw(name, s) ? s : def;
 }
 
 std::string required_string(const std::string &name) {
-  help_line(name, "required");
   std::string s;
   if (!raw(name, s) || s.empty()) throw InputError("missing option -" + name);
   return s;
@@ -122,7 +112,6 @@ std::string choice(const std::string &name, const std::string &def,
 }
 
 std::vector<std::string> list(const std::string &name) {
-  help_line(name, "comma-separated list");
   std::vector<std::string> out;
   std::string s;
   if (!raw(name, s)) return out;

@@ -1,5 +1,5 @@
-#include "fsi/fluid_solid_split.hpp"
-#include "fsi/options.hpp"
+#include "fsi/solver/fluid_solid_split.hpp"
+#include "fsi/scene/options.hpp"
 
 namespace fsi {
 

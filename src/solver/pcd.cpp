@@ -1,7 +1,7 @@
 // Pressure convection-diffusion preconditioner: the operators (PcdOperators) and the PETSc PC
 // type "pcd" that applies S^{-1} ~ (rho cm M_p)^{-1} F_p Sp^{-1} (see pcd.hpp).
-#include "fsi/pcd.hpp"
-#include "fsi/options.hpp"
+#include "fsi/solver/pcd.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <petsc/private/pcimpl.h>
 
@@ -137,8 +137,8 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
   // Pressure dofs on the fluid's traction boundaries, marked alike on every rank that sees them.
   std::vector<char> outflow(space.n_local, 0);
   for (auto &bc : bcs.list())
-    if (bc.fluid_traction())
-      for (auto &f : bc.faces)
+    if (bc->fixes_pressure_level())
+      for (auto &f : bc->faces())
         for (int i = 0; i < 3; ++i)
           outflow[f.pdof[i]] = 1;
   outflow_ = space.mark_on_all_ranks(outflow);
@@ -147,8 +147,8 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
   for (PetscInt k : fluid.cells())
     in_fluid[k] = 1;
   for (auto &bc : bcs.list())
-    if (bc.type == BoundaryCondition::Velocity)
-      for (auto &f : space.boundary_faces(mesh, bc.name, &in_fluid))
+    if (bc->type() == "velocity")
+      for (auto &f : space.boundary_faces(mesh, bc->name(), &in_fluid))
         inflow_.push_back(f);
 
   held_ = bcs.dirichlet_mask();
@@ -184,8 +184,10 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
 }
 
 PcdOperators::~PcdOperators() {
-  g_Fp = nullptr;
-  g_D = nullptr;
+  if (g_Fp == &Fp_) { // a rebuilt run's operators may already have taken over
+    g_Fp = nullptr;
+    g_D = nullptr;
+  }
   if (Fp_) MatDestroy(&Fp_);
   if (D_) VecDestroy(&D_);
 }

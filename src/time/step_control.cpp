@@ -1,5 +1,5 @@
-#include "fsi/step_control.hpp"
-#include "fsi/options.hpp"
+#include "fsi/time/step_control.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <algorithm>
 
@@ -7,16 +7,16 @@ namespace fsi {
 
 StepControl StepControl::from_options(double nominal_dt) {
   StepControl c;
-  c.enabled = opt::choice("ts_adapt", "cut", {"cut", "none"}) == "cut";
+  c.enabled = opt::choice("ts_adapt_type", "cut", {"cut", "none"}) == "cut";
   c.nominal = c.dt = nominal_dt;
-  c.factor = opt::positive("ts_cut_factor", 0.5);
-  if (c.factor >= 1) throw InputError("option -ts_cut_factor must be in (0, 1), e.g. 0.5");
-  c.dt_min = opt::positive("ts_dt_min", nominal_dt / 1000);
+  c.factor = opt::positive("ts_adapt_scale_solve_failed", 0.5);
+  if (c.factor >= 1) throw InputError("option -ts_adapt_scale_solve_failed must be in (0, 1), e.g. 0.5");
+  c.dt_min = opt::positive("ts_adapt_dt_min", nominal_dt / 1000);
   if (c.dt_min > nominal_dt)
-    throw InputError("option -ts_dt_min is larger than the time step -ts_dt");
-  c.grow_after = opt::integer("ts_grow_after", 3);
-  c.easy_newton = opt::integer("ts_easy_newton", 4);
-  if (c.grow_after < 1) throw InputError("option -ts_grow_after must be >= 1");
+    throw InputError("option -ts_adapt_dt_min is larger than the time step -ts_dt");
+  c.grow_after = opt::integer("step_grow_after", 3);
+  c.easy_newton = opt::integer("step_easy_newton", 4);
+  if (c.grow_after < 1) throw InputError("option -step_grow_after must be >= 1");
   return c;
 }
 

@@ -1,0 +1,89 @@
+// One boundary condition on one named boundary (physical surface).  A BC type is one file under
+// src/boundary/ that derives from BoundaryCondition and is registered by name in
+// src/boundary/registry.cpp (one line); the scene picks it with -bc_<name>_type TYPE.
+// A type fixes velocity components on its nodes (Dirichlet: values at t_{n+1} on the nodes'
+// current positions, or displacements imposed through the Newmark relation), adds a boundary
+// residual and its Jacobian (tractions at t_{n+alpha_f}), or both.  Its options are read once
+// at construction, so profiles and waveforms are resolved before any node loop.
+#pragma once
+#include "fsi/analytic/analytic.hpp"
+#include "fsi/analytic/exact_solid.hpp"
+#include "fsi/discretization/p2tet.hpp"
+#include "fsi/discretization/space.hpp"
+#include "fsi/mesh/mesh.hpp"
+#include "fsi/time/step_context.hpp"
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+// What a BC type may use when it is built.
+struct BoundarySetup {
+  const Mesh &mesh;
+  const Space &space;
+  const ExactFlow *exact;               // -exact_solution, or null
+  const ExactSolid *exact_solid;        // -exact_displacement, or null
+  double mu, rho;                       // the fluid's (0 without a fluid)
+  const std::vector<double> &material_X; // the solid's material reference, 3 per local vertex
+  std::string name;                     // the boundary's physical name
+  std::string prefix() const { return "bc_" + name + "_"; }
+};
+
+class BoundaryCondition {
+public:
+  // Which kind of nodal data a Dirichlet type prescribes.
+  enum class Data { none, velocity, displacement };
+  // Which type wins at a node that two Dirichlet boundaries fix in the same component: the
+  // higher precedence (a wall holds its nodes), then the boundary listed first in -bc_names.
+  enum Precedence { prescribed = 1, wall = 2 };
+
+  BoundaryCondition(const BoundarySetup &s, Data data, bool dirichlet_default, bool faces);
+  virtual ~BoundaryCondition() = default;
+  virtual std::string type() const = 0;
+  const std::string &name() const { return name_; }
+  Data data() const { return data_; }
+  virtual int precedence() const { return prescribed; }
+  // Velocity (data velocity, at node position x) or displacement (data displacement, at the
+  // node's material position x) at time t; only the fixed components are used.
+  virtual void value(const double x[3], double t, double v[3]) const {
+    v[0] = v[1] = v[2] = 0;
+  }
+  // Boundary terms of the momentum residual and their Jacobian.
+  virtual void add_residual(const StepContext &ctx, PetscScalar *F) const {}
+  virtual void add_jacobian(const StepContext &ctx, Mat J) const {}
+  // Does it fix the fluid's pressure level (a traction boundary)?
+  virtual bool fixes_pressure_level() const { return false; }
+
+  bool fixed(int component) const { return fixed_[component]; }
+  const std::vector<DofNode> &nodes() const { return nodes_; }
+  const std::vector<BoundaryFace> &faces() const { return faces_; }
+
+protected:
+  std::string name_;
+  Data data_;
+  bool fixed_[3] = {false, false, false};
+  std::vector<DofNode> nodes_;
+  std::vector<BoundaryFace> faces_;
+};
+
+using BoundaryFactory = std::unique_ptr<BoundaryCondition> (*)(const BoundarySetup &);
+struct BoundaryType {
+  const char *name, *physics, *help;
+  BoundaryFactory make;
+};
+// Every registered type (src/boundary/registry.cpp).
+const std::vector<BoundaryType> &boundary_types();
+
+// Helpers shared by the types.
+void read_direction(const std::string &option, double dir[3]); // unit vector from x,y,z
+// Sum -w N_a t(x) over a fluid face on the configuration X_af (t from `traction`), plus the
+// backflow term beta rho/2 min(v.n, 0) v when beta > 0; into F (local).
+void add_fluid_face_traction(const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule,
+                             double beta, double rho,
+                             const std::function<void(const double x[3], const double n[3],
+                                                      double t[3])> &traction,
+                             PetscScalar *F);
+
+} // namespace fsi

@@ -1,0 +1,28 @@
+// A physics module contributes element residuals and Jacobians on its region.  The scene decides
+// which modules exist; the coupled system sums what they add.  A module that is not created costs
+// nothing.  A new physics is one new module file plus its creation line in the Simulation.
+#pragma once
+#include "fsi/time/step_context.hpp"
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+struct PhysicsModule {
+  virtual ~PhysicsModule() = default;
+  virtual std::string name() const = 0;
+  // Add this module's residual into the local array F (size Space::n_local).
+  virtual void add_residual(const StepContext &ctx, PetscScalar *F) = 0;
+  // Add this module's Jacobian into J (local indices, ADD_VALUES); rows of Dirichlet dofs skipped.
+  virtual void add_jacobian(const StepContext &ctx, Mat J) = 0;
+  virtual PetscInt n_cells() const = 0;
+  // The local dofs of each of its elements (n per element): the Jacobian's nonzero pattern.
+  virtual void element_dofs(std::vector<PetscInt> &dofs, int &n) const = 0;
+  // True when element_dofs() changed since the pattern was last built (e.g. contact pairs found
+  // on the deformed configuration): the system then rebuilds its matrix before the next solve.
+  virtual bool couplings_changed() const { return false; }
+  // Called after the pattern was built from element_dofs().
+  virtual void pattern_built() {}
+};
+
+} // namespace fsi

@@ -1,0 +1,54 @@
+// Per-step monitors written as columns of monitor.csv:
+//   -monitor_surfaces a,b   flux  Q = int v.n dA [m^3/s] (n outward of the fluid), area [m^2],
+//                           force on the surface by the fluid F = -int sigma n dA [N],
+//                           mean pressure [Pa], all on the current (deformed) configuration;
+//   -probe_points x,y,z;... velocity and pressure at points of the reference mesh;
+//   -monitor_fluid_volume   the fluid's volume on the current mesh [m^3];
+//   with -exact_solution: L2 errors of velocity (at t_{n+1}) and pressure (at t_{n+alpha_f}, where
+//   the generalized-alpha pressure lives; up to its mean where the flow does not fix the level)
+//   and, at probes, the exact velocity.
+#pragma once
+#include "fsi/analytic/analytic.hpp"
+#include "fsi/physics/fluid.hpp"
+#include "fsi/physics/fluid.hpp"
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+class Simulation;
+
+struct ErrorNorms {
+  double v_l2 = 0, p_l2 = 0, v_norm = 0, p_norm = 0;
+};
+
+class Monitors {
+public:
+  void setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
+             const ExactFlow *exact);
+  std::vector<std::string> columns() const;
+  std::vector<double> evaluate(const Simulation &pb);
+  const ErrorNorms &last_errors() const { return err_; }
+  bool has_exact() const { return exact_ != nullptr; }
+
+private:
+  struct Probe {
+    double x[3];
+    int owner = -1;        // rank that evaluates it
+    PetscInt cell = -1;    // local cell index on the owner
+    double lambda[4] = {}; // barycentric coordinates in that cell
+  };
+  ErrorNorms errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
+                    const std::vector<double> &Xp, double tp) const;
+  const Space *space_ = nullptr;
+  const FluidModule *fluid_ = nullptr;
+  const ExactFlow *exact_ = nullptr;
+  std::vector<std::string> surf_names_;
+  std::vector<std::vector<BoundaryFace>> surf_faces_;
+  std::vector<Probe> probes_;
+  ErrorNorms err_;
+  bool volume_ = false;
+  MPI_Comm comm_ = MPI_COMM_NULL;
+};
+
+} // namespace fsi

@@ -1,0 +1,82 @@
+// The coupled nonlinear system of one step: R(U) = sum of the physics modules' element residuals
+// + the boundary conditions' terms, with Dirichlet dofs as rows u - g = 0 (identity Jacobian
+// rows); Newton (SNES) with our assembled exact Jacobian; every solver choice is a PETSc option.
+// The Jacobian's nonzero pattern comes from the modules' element dof lists and is rebuilt when a
+// module says its couplings changed (contact pairs appear and vanish).  The kernels' context
+// (time, history, geometry) is filled by the time integrator and the ALE object before a solve;
+// this object adds the Newton iterate.
+#pragma once
+#include "fsi/boundary/boundaries.hpp"
+#include "fsi/physics/physics_module.hpp"
+#include "fsi/solver/fluid_solid_split.hpp"
+#include "fsi/solver/pcd.hpp"
+#include <memory>
+#include <vector>
+
+namespace fsi {
+
+struct SolveStats {
+  PetscInt newton = 0, krylov = 0;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  bool inverted = false; // a residual met an inverted solid element
+};
+
+struct CostCounters {
+  long residuals = 0, jacobians = 0, pattern_builds = 0;
+  double residual_time = 0, jacobian_time = 0, nonlinear_solve_time = 0;
+};
+
+class CoupledSystem {
+public:
+  // Largest number of dofs of one element (a Jacobian block): checked when the pattern is built.
+  static constexpr int max_element_dofs = 96;
+
+  explicit CoupledSystem(const Space &space);
+  ~CoupledSystem();
+  CoupledSystem(const CoupledSystem &) = delete;
+  CoupledSystem &operator=(const CoupledSystem &) = delete;
+
+  void add_module(std::unique_ptr<PhysicsModule> m) { modules_.push_back(std::move(m)); }
+  void set_boundaries(const Boundaries *b) { bcs_ = b; }
+  // With a field split, give the velocity block the rigid-body modes as near null space.
+  void set_rigid_body_modes(bool on) { rigid_modes_ = on; }
+  // F_p and M_p of the pcd Schur preconditioner (pcd.hpp), assembled with each Jacobian.
+  void set_pcd(std::unique_ptr<PcdOperators> p) { pcd_ = std::move(p); }
+  // Velocity block split into fluid and solid, set up on the first Jacobian.
+  void set_fluid_solid_split(std::unique_ptr<FluidSolidSplit> s) { split_ = std::move(s); }
+  // After modules and boundaries: matrix, SNES (no options prefix), field-split index sets.
+  void setup_solver();
+
+  const std::vector<std::unique_ptr<PhysicsModule>> &modules() const { return modules_; }
+  // The context the kernels see (time and geometry filled by their owners).
+  StepContext &context() { return ctx_; }
+  // Dirichlet data of this step: (local dof, value); set before solve().
+  std::vector<std::pair<PetscInt, double>> &dirichlet_values() { return bc_values_; }
+  // Solve R(U) = 0 from the initial guess U (Dirichlet values are put into U first).
+  SolveStats solve(Vec U);
+  // A new step size invalidates a Jacobian the scene computes once (-snes_lag_jacobian -2).
+  void step_size_changed();
+  const CostCounters &cost() const { return cost_; }
+
+  // SNES callbacks; residual() returns false where a solid element inverted.
+  bool residual(Vec U, Vec F);
+  void jacobian(Vec U, Mat J);
+
+private:
+  void build_pattern();
+  const Space &space_;
+  std::vector<std::unique_ptr<PhysicsModule>> modules_;
+  const Boundaries *bcs_ = nullptr;
+  std::unique_ptr<PcdOperators> pcd_;
+  std::unique_ptr<FluidSolidSplit> split_;
+  bool rigid_modes_ = false;
+  Vec F_ = nullptr, Uloc_ = nullptr, Floc_ = nullptr;
+  Mat J_ = nullptr;
+  SNES snes_ = nullptr;
+  bool inverted_ = false;
+  std::vector<std::pair<PetscInt, double>> bc_values_;
+  StepContext ctx_;
+  CostCounters cost_;
+};
+
+} // namespace fsi

@@ -1,0 +1,122 @@
+// A run on one mesh.  Built from the mesh, the scene (options) and optionally a state to resume
+// from, a Simulation owns everything that indexes its discrete space: the space itself, the
+// physics modules, the boundary conditions, the ALE mesh, the time integrator, the coupled
+// system and its solver, the monitors and the field files.  Changing the mesh (or rebuilding on
+// the same one) is: capture() -> destroy -> Simulation(new mesh, scene, &state); nothing
+// survives that holds an index into the old space.
+// Two references are kept apart: the fluid mesh's ALE reference (Space::X, where the mesh
+// displacement is zero) and the solid's material reference (material_X(), where the solid
+// displacement is measured); a state carries both.
+#pragma once
+#include "fsi/ale/ale.hpp"
+#include "fsi/analytic/analytic.hpp"
+#include "fsi/analytic/exact_solid.hpp"
+#include "fsi/boundary/boundaries.hpp"
+#include "fsi/io/checkpoint.hpp"
+#include "fsi/io/field_writer.hpp"
+#include "fsi/physics/fluid.hpp"
+#include "fsi/physics/solid.hpp"
+#include "fsi/post/monitors.hpp"
+#include "fsi/post/solid_monitors.hpp"
+#include "fsi/post/wall_shear.hpp"
+#include "fsi/problem/coupled_system.hpp"
+#include "fsi/time/generalized_alpha.hpp"
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+// What the scene asks for, read once from the options (-scene_name, -physics, -ts_*).
+struct Scene {
+  std::string name;
+  std::vector<std::string> physics;
+  bool fluid = false, solid = false;
+  TimeParams time;
+  std::string tag() const; // what a state must match: physics and time scheme
+  static Scene from_options();
+};
+
+// Where a Simulation writes its own files (field and wall-shear files are per mesh).
+struct OutputNames {
+  std::string dir, fields = "fields", hemo = "hemo";
+  long fields_every = 0;
+};
+
+struct StepStats {
+  PetscInt newton = 0, krylov = 0;
+  int geometry_iterations = 0; // extra solves on an updated mesh (geometry implicit)
+  double geometry_change = 0;  // last relative mesh change
+};
+
+class Simulation {
+public:
+  Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &out, const RunState *state);
+  ~Simulation();
+  Simulation(const Simulation &) = delete;
+  Simulation &operator=(const Simulation &) = delete;
+
+  // One step of size dt() (a load step in static mode).  Throws SolveError (Newton failed, a
+  // solid element inverted) or DistortionError (fluid mesh past its quality limits).
+  StepStats step();
+  void set_dt(double dt);
+  double dt() const { return time_->dt(); }
+  double time() const { return time_->time(); }
+  long step_index() const { return time_->step_index(); }
+
+  // After an accepted step of length dt: wall-shear update and the monitor values (the columns
+  // of monitor_columns()); fields when due.
+  std::vector<std::string> monitor_columns() const;
+  std::vector<double> after_step(double dt, const StepStats &s);
+  void close_outputs();
+  // The state at the last accepted step (collective; data on rank 0).
+  RunState capture() const;
+
+  // Read access for monitors and reports.
+  const Space &space() const { return space_; }
+  const Ale &ale() const { return *ale_; }
+  const CoupledSystem &system() const { return *system_; }
+  const Boundaries &boundaries() const { return *bcs_; }
+  const FluidModule *fluid() const { return fluid_; }
+  const SolidModule *solid() const { return solid_; }
+  const Monitors &monitors() const { return mon_; }
+  const SolidMonitors &solid_monitors() const { return smon_; }
+  const WallShear &wall_shear() const { return wss_; }
+  const std::vector<double> &material_X() const { return material_X_; }
+  Vec solution() const { return U_; }
+  void solution_local(Vec &loc) const { space_.to_local(U_, loc); }
+  void displacement_local(Vec &loc) const { space_.to_local(time_->displacement(), loc); }
+  const std::vector<double> &coordinates() const { return ale_->coordinates(); }
+  // The pressure unknown of the last step is the multiplier of the momentum balance at
+  // t_{n+alpha_f} on that configuration: compare it there (second order in time).
+  const std::vector<double> &coordinates_af() const { return ale_->coordinates_af(); }
+  double time_af() const { return time_af_; }
+
+private:
+  void build_physics(const Mesh &mesh);
+  void initialize(const std::string &ic);
+  void restore(const RunState &s);
+  void dirichlet_data(double t_np1);
+  const Scene &scene_;
+  OutputNames out_;
+  Space space_;
+  std::vector<double> material_X_;
+  std::unique_ptr<ExactFlow> exact_;
+  std::unique_ptr<ExactSolid> exact_solid_;
+  const FluidModule *fluid_ = nullptr;
+  const SolidModule *solid_ = nullptr;
+  std::unique_ptr<Boundaries> bcs_;
+  std::unique_ptr<GeneralizedAlpha> time_;
+  std::unique_ptr<Ale> ale_;
+  std::unique_ptr<CoupledSystem> system_;
+  std::unique_ptr<Checkpoint> keys_;
+  Monitors mon_;
+  SolidMonitors smon_;
+  WallShear wss_;
+  std::unique_ptr<FieldWriter> fields_;
+  Vec U_ = nullptr, Sloc_ = nullptr;
+  double time_af_ = 0;
+  std::vector<std::pair<PetscInt, double>> disp_values_;
+};
+
+} // namespace fsi

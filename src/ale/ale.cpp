@@ -1,0 +1,113 @@
+#include "fsi/ale/ale.hpp"
+#include "fsi/run/stages.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+Ale::Ale(const Space &space, std::unique_ptr<MeshMotion> motion,
+         const std::vector<PetscInt> *fluid_cells)
+    : space_(space), motion_(std::move(motion)), fluid_cells_(fluid_cells) {
+  geometry_iterations_ = (int)opt::integer("ale_geometry_iterations", 0);
+  if (geometry_iterations_ < 0) throw InputError("option -ale_geometry_iterations must be >= 0");
+  geometry_rtol_ = opt::positive("ale_geometry_rtol", 1e-6);
+  min_jacobian_ = opt::real("ale_min_jacobian", 0.0);
+  max_skewness_ = opt::positive("ale_max_skewness", 0.99);
+  Xn_ = space.X;
+  dn_.assign(space.X.size(), 0.0);
+}
+
+void Ale::mesh_at(double t, std::vector<double> &d) const {
+  if (motion_ && !motion_->follows_solid()) // the solid is at rest at t = 0
+    motion_->displacement(t, nullptr, d);
+  else
+    d.assign(3 * space_.n_vertices(), 0.0);
+}
+
+void Ale::initialize() {
+  std::vector<double> d;
+  mesh_at(0.0, d);
+  restore(d);
+}
+
+void Ale::restore(const std::vector<double> &dn) {
+  dn_ = dn;
+  for (size_t i = 0; i < Xn_.size(); ++i)
+    Xn_[i] = space_.X[i] + dn_[i];
+}
+
+void Ale::move(double t_np1, const PetscScalar *solid, std::vector<double> &d) {
+  if (!motion_) {
+    d.assign(3 * space_.n_vertices(), 0.0);
+    return;
+  }
+  FSI_CALL(PetscLogStagePush(Stages::get().mesh_motion));
+  const double t0 = MPI_Wtime();
+  motion_->displacement(t_np1, motion_->follows_solid() ? solid : nullptr, d);
+  seconds_ += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+}
+
+void Ale::begin_step() {
+  // The mesh solver starts from the last accepted mesh (a retried or restarted step starts
+  // exactly where the uninterrupted run did).
+  if (motion_) motion_->set_guess(dn_);
+}
+
+void Ale::set_geometry(const std::vector<double> &d, double alpha_f, double dt, bool steady) {
+  dnp1_ = d;
+  const size_t nd = d.size();
+  Xaf_.resize(nd);
+  W_.resize(nd);
+  Xnp1_.resize(nd);
+  const double af = steady ? 1.0 : alpha_f;
+  for (size_t i = 0; i < nd; ++i) {
+    Xaf_[i] = space_.X[i] + dn_[i] + af * (dnp1_[i] - dn_[i]);
+    W_[i] = steady ? 0.0 : (dnp1_[i] - dn_[i]) / dt;
+    Xnp1_[i] = space_.X[i] + dnp1_[i];
+  }
+  has_velocity_ = motion_ && !steady;
+}
+
+void Ale::fill_context(StepContext &ctx) const {
+  ctx.X_af = Xaf_.data();
+  // Without mesh motion both configurations are the same array: kernels then skip the second
+  // geometry (pointer equality).
+  ctx.X_np1 = motion_ ? Xnp1_.data() : Xaf_.data();
+  ctx.W = has_velocity_ ? W_.data() : nullptr;
+}
+
+double Ale::relative_change(const std::vector<double> &d) const {
+  double change = 0, size = 0;
+  for (size_t i = 0; i < d.size(); ++i) {
+    change = std::max(change, std::fabs(d[i] - dnp1_[i]));
+    size = std::max(size, std::fabs(d[i]));
+  }
+  double loc[2] = {change, size}, glob[2];
+  MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_MAX, PetscObjectComm((PetscObject)space_.dm));
+  return glob[1] > 0 ? glob[0] / glob[1] : 0.0;
+}
+
+void Ale::check(const char *when, long step) {
+  if (!motion_ || !fluid_cells_) return;
+  quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_);
+  if (quality_.min_jacobian <= min_jacobian_ || quality_.max_skewness >= max_skewness_) {
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "fluid mesh too distorted %s step %ld: smallest volume ratio %.3g (limit "
+                  "-ale_min_jacobian %.3g), worst skewness %.3f (limit -ale_max_skewness %.3f); "
+                  "remeshing is not available yet: refine the mesh, stiffen the motion "
+                  "(-ale_stiffening 1) or reduce the load",
+                  when, step, quality_.min_jacobian, min_jacobian_, quality_.max_skewness,
+                  max_skewness_);
+    throw DistortionError(msg);
+  }
+}
+
+void Ale::accept() {
+  dn_ = dnp1_;
+  Xn_ = Xnp1_;
+}
+
+} // namespace fsi

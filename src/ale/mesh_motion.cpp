@@ -1,0 +1,101 @@
+#include "fsi/ale/mesh_motion.hpp"
+#include "fsi/scene/options.hpp"
+#include "fsi/discretization/p2tet.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fsi {
+
+std::unique_ptr<MeshMotion> make_laplace_motion(const Mesh &mesh, const Space &space,
+                                                const std::vector<PetscInt> &fluid_cells);
+
+namespace {
+
+struct PrescribedBubble : MeshMotion {
+  const Space &space;
+  double A, T, lo[3], hi[3];
+  PrescribedBubble(const Space &s, double A_, double T_) : space(s), A(A_), T(T_) {
+    double l[3] = {1e300, 1e300, 1e300}, h[3] = {-1e300, -1e300, -1e300};
+    for (PetscInt v = 0; v < s.n_vertices(); ++v)
+      for (int d = 0; d < 3; ++d) {
+        l[d] = std::min(l[d], s.X[3 * v + d]);
+        h[d] = std::max(h[d], s.X[3 * v + d]);
+      }
+    MPI_Comm comm = PetscObjectComm((PetscObject)s.dm);
+    MPI_Allreduce(l, lo, 3, MPI_DOUBLE, MPI_MIN, comm);
+    MPI_Allreduce(h, hi, 3, MPI_DOUBLE, MPI_MAX, comm);
+  }
+  std::string name() const override { return "prescribed bubble"; }
+  void displacement(double t, const PetscScalar *, std::vector<double> &d) override {
+    d.assign(3 * space.n_vertices(), 0.0);
+    for (PetscInt v = 0; v < space.n_vertices(); ++v) {
+      double b = 1;
+      for (int k = 0; k < 3; ++k) {
+        double xi = 2 * (space.X[3 * v + k] - lo[k]) / (hi[k] - lo[k]) - 1;
+        b *= 1 - xi * xi;
+      }
+      for (int k = 0; k < 3; ++k)
+        d[3 * v + k] = A * (t / T) * b;
+    }
+  }
+};
+
+} // namespace
+
+std::unique_ptr<MeshMotion> make_mesh_motion(const Mesh &mesh, const Space &space,
+                                             const std::vector<PetscInt> *fluid_cells) {
+  const std::string kind = opt::choice("ale_motion", "none", {"none", "prescribed", "laplace"});
+  if (kind == "prescribed")
+    return std::make_unique<PrescribedBubble>(space, opt::real("ale_amplitude", 0.1),
+                                              opt::positive("ale_time", 1.0));
+  if (kind == "laplace") {
+    if (!fluid_cells) throw InputError("-ale_motion laplace needs a fluid in the scene");
+    return make_laplace_motion(mesh, space, *fluid_cells);
+  }
+  return nullptr;
+}
+
+MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
+                         const std::vector<double> &X) {
+  double jmin = 1e300, smax = 0;
+  for (PetscInt k : cells) {
+    double P[4][3], P0[4][3];
+    space.cell_points(k, X.data(), P);
+    space.cell_points(k, space.X.data(), P0);
+    auto volume = [](const double Q[4][3], double a[3], double b[3], double c[3]) {
+      for (int d = 0; d < 3; ++d)
+        a[d] = Q[1][d] - Q[0][d], b[d] = Q[2][d] - Q[0][d], c[d] = Q[3][d] - Q[0][d];
+      return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+              a[2] * (b[0] * c[1] - b[1] * c[0])) /
+             6.0;
+    };
+    double a[3], b[3], c[3], a0[3], b0[3], c0[3];
+    const double Vs = volume(P, a, b, c), V0 = volume(P0, a0, b0, c0), V = std::fabs(Vs);
+    jmin = std::min(jmin, Vs / V0); // the vertex order may be negatively oriented: compare signs
+    if (Vs / V0 <= 0) {
+      smax = 1;
+      continue;
+    }
+    // circumradius: |a^2 (b x c) + b^2 (c x a) + c^2 (a x b)| / (12 V)
+    double bc[3], ca[3], ab[3], s[3];
+    cross(b, c, bc);
+    cross(c, a, ca);
+    cross(a, b, ab);
+    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2],
+                 b2 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
+                 c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+    for (int d = 0; d < 3; ++d)
+      s[d] = a2 * bc[d] + b2 * ca[d] + c2 * ab[d];
+    const double R = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / (12 * V);
+    const double Vreg = 8 * std::sqrt(3.0) / 27 * R * R * R;
+    smax = std::max(smax, 1 - V / Vreg);
+  }
+  MeshQuality q;
+  MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
+  MPI_Allreduce(&jmin, &q.min_jacobian, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(&smax, &q.max_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return q;
+}
+
+} // namespace fsi

@@ -1,0 +1,124 @@
+#include "fsi/boundary/boundaries.hpp"
+#include "fsi/scene/options.hpp"
+
+namespace fsi {
+
+static std::string type_list(const char *physics) {
+  std::vector<std::string> names;
+  for (auto &t : boundary_types())
+    if (std::string(t.physics) == physics) names.push_back(t.name);
+  return opt::join(names, "|");
+}
+
+Boundaries::Boundaries(const Mesh &mesh, const Space &space, const ExactFlow *exact,
+                       const ExactSolid *exact_solid, double mu, double rho,
+                       const std::vector<double> &material_X,
+                       const std::vector<PetscInt> *fluid_cells)
+    : space_(space), material_X_(material_X), exact_(exact) {
+  mask_.assign(space.n_local, 0);
+  owner_.assign(space.n_local, -1);
+  const auto names = opt::list("bc_names");
+  mesh.require_groups(names, "-bc_names");
+  std::vector<std::string> all_types;
+  for (auto &t : boundary_types())
+    all_types.push_back(t.name);
+  bool level_fixed = false;
+  for (auto &n : names) {
+    const std::string pre = "bc_" + n + "_";
+    if (!opt::has(pre + "type"))
+      throw InputError("boundary '" + n + "' is listed in -bc_names but has no -" + pre +
+                       "type: give " + type_list("fluid") + " (fluid) or " + type_list("solid") +
+                       " (solid)");
+    const std::string type = opt::choice(pre + "type", "", all_types);
+    BoundarySetup setup{mesh, space, exact, exact_solid, mu, rho, material_X, n};
+    for (auto &t : boundary_types())
+      if (type == t.name) bcs_.push_back(t.make(setup));
+    const BoundaryCondition &bc = *bcs_.back();
+    level_fixed = level_fixed || bc.fixes_pressure_level();
+    // Precedence at shared nodes (see the header): the first BC listed with the highest rank.
+    const int index = (int)bcs_.size() - 1;
+    for (auto &nd : bc.nodes())
+      for (int i = 0; i < 3; ++i) {
+        if (!bc.fixed(i)) continue;
+        const PetscInt dof = nd.dof + i;
+        mask_[dof] = 1;
+        if (owner_[dof] < 0 || bcs_[owner_[dof]]->precedence() < bc.precedence())
+          owner_[dof] = index;
+      }
+  }
+  // Pressure dofs outside the fluid belong to no equation: hold them at zero.
+  const std::vector<char> in_fluid =
+      fluid_cells ? space.pressure_dofs_of(*fluid_cells) : std::vector<char>(space.n_local, 0);
+  std::vector<char> all_p(space.n_local, 0); // every local vertex belongs to a local cell
+  for (PetscInt d : space.cell_pdof)
+    all_p[d] = 1;
+  for (PetscInt i = 0; i < space.n_local; ++i)
+    if (all_p[i] && !in_fluid[i]) {
+      outside_fluid_.push_back(i);
+      mask_[i] = 1;
+    }
+  // Without a traction boundary the fluid pressure is defined up to a constant: pin one vertex.
+  if (fluid_cells && !level_fixed) {
+    pinned_ = true;
+    pin_dof_ = space.pinned_pressure_dof(pin_vertex_, &in_fluid);
+    if (pin_dof_ >= 0) mask_[pin_dof_] = 1;
+  }
+}
+
+long Boundaries::pressure_dofs_outside_fluid() const {
+  long mine = 0, all = 0;
+  for (PetscInt i : outside_fluid_)
+    mine += space_.owned(i);
+  MPI_Allreduce(&mine, &all, 1, MPI_LONG, MPI_SUM, PetscObjectComm((PetscObject)space_.dm));
+  return all;
+}
+
+// Values of one BC's nodes that it owns, at node positions X (vertices, edge midpoints).
+void Boundaries::node_values(const BoundaryCondition &bc, size_t index, double t,
+                             const double *X,
+                             std::vector<std::pair<PetscInt, double>> &out) const {
+  for (auto &nd : bc.nodes()) {
+    double x[3], v[3];
+    for (int d = 0; d < 3; ++d)
+      x[d] = nd.vb < 0 ? X[3 * nd.va + d] : 0.5 * (X[3 * nd.va + d] + X[3 * nd.vb + d]);
+    bc.value(x, t, v);
+    for (int d = 0; d < 3; ++d)
+      if (bc.fixed(d) && owner_[nd.dof + d] == (int)index) out.emplace_back(nd.dof + d, v[d]);
+  }
+}
+
+void Boundaries::displacement_values(double t,
+                                     std::vector<std::pair<PetscInt, double>> &out) const {
+  out.clear();
+  // Displacements are given at the nodes' material positions.
+  for (size_t k = 0; k < bcs_.size(); ++k)
+    if (bcs_[k]->data() == BoundaryCondition::Data::displacement)
+      node_values(*bcs_[k], k, t, material_X_.data(), out);
+}
+
+void Boundaries::dirichlet_values(double t, const double *X,
+                                  std::vector<std::pair<PetscInt, double>> &out) const {
+  out.clear();
+  for (size_t k = 0; k < bcs_.size(); ++k)
+    if (bcs_[k]->data() == BoundaryCondition::Data::velocity)
+      node_values(*bcs_[k], k, t, X, out);
+  for (PetscInt i : outside_fluid_)
+    out.emplace_back(i, 0.0);
+  if (pin_dof_ >= 0) {
+    double p = 0;
+    if (exact_) p = exact_->pressure(&X[3 * pin_vertex_], t);
+    out.emplace_back(pin_dof_, p);
+  }
+}
+
+void Boundaries::add_residual(const StepContext &ctx, PetscScalar *F) const {
+  for (auto &bc : bcs_)
+    bc->add_residual(ctx, F);
+}
+
+void Boundaries::add_jacobian(const StepContext &ctx, Mat J) const {
+  for (auto &bc : bcs_)
+    bc->add_jacobian(ctx, J);
+}
+
+} // namespace fsi

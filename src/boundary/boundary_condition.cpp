@@ -1,0 +1,74 @@
+#include "fsi/boundary/boundary_condition.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+void read_direction(const std::string &name, double dir[3]) {
+  auto d = opt::reals(name);
+  if (d.size() != 3) throw InputError("option -" + name + " needs 3 numbers x,y,z");
+  const double nrm = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (nrm == 0) throw InputError("option -" + name + " must be non-zero");
+  for (int i = 0; i < 3; ++i)
+    dir[i] = d[i] / nrm;
+}
+
+// -bc_<name>_components x,y: the velocity components the boundary fixes (default: all for a
+// Dirichlet type, none otherwise).
+BoundaryCondition::BoundaryCondition(const BoundarySetup &s, Data data, bool dirichlet_default,
+                                     bool faces)
+    : name_(s.name), data_(data) {
+  const std::string pre = s.prefix();
+  const auto comps = opt::list(pre + "components");
+  for (int i = 0; i < 3; ++i)
+    fixed_[i] = dirichlet_default && comps.empty();
+  for (auto &c : comps) {
+    if (c != "x" && c != "y" && c != "z")
+      throw InputError("option -" + pre + "components takes x, y, z; got '" + c + "'");
+    fixed_[c[0] - 'x'] = true;
+  }
+  if (fixed_[0] || fixed_[1] || fixed_[2]) nodes_ = s.space.boundary_velocity_nodes(s.mesh, name_);
+  if (faces) faces_ = s.space.boundary_faces(s.mesh, name_);
+}
+
+void add_fluid_face_traction(const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule,
+                             double beta, double rho,
+                             const std::function<void(const double x[3], const double n[3],
+                                                      double t[3])> &traction,
+                             PetscScalar *F) {
+  double X[3][3], n[3];
+  for (int i = 0; i < 3; ++i)
+    for (int d = 0; d < 3; ++d)
+      X[i][d] = ctx.X_af[3 * f.vertex[i] + d];
+  const double area2 = outward_normal(f, ctx.X_af, n); // 2 * area
+  double Fe[6][3] = {};
+  for (size_t q = 0; q < rule.weight.size(); ++q) {
+    const double *l = rule.lambda[q].data();
+    double N[6], x[3] = {0, 0, 0}, tr[3];
+    p2_tri(l, N);
+    for (int i = 0; i < 3; ++i)
+      for (int d = 0; d < 3; ++d)
+        x[d] += l[i] * X[i][d];
+    traction(x, n, tr);
+    const double w = rule.weight[q] * area2; // reference triangle measure 1/2
+    if (beta > 0) { // backflow: traction += beta rho/2 min(v.n, 0) v
+      double v[3] = {0, 0, 0};
+      for (int a = 0; a < 6; ++a)
+        for (int d = 0; d < 3; ++d)
+          v[d] += N[a] * ctx.v_af(f.vdof[a] + d);
+      const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+      if (vn < 0)
+        for (int d = 0; d < 3; ++d)
+          tr[d] += 0.5 * beta * rho * vn * v[d];
+    }
+    for (int a = 0; a < 6; ++a)
+      for (int d = 0; d < 3; ++d)
+        Fe[a][d] -= w * N[a] * tr[d];
+  }
+  for (int a = 0; a < 6; ++a)
+    for (int d = 0; d < 3; ++d)
+      F[f.vdof[a] + d] += Fe[a][d];
+}
+
+} // namespace fsi

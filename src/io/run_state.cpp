@@ -1,0 +1,140 @@
+#include "fsi/io/run_state.hpp"
+
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <fcntl.h>
+#include <memory>
+#include <sstream>
+#include <unistd.h>
+
+namespace fsi {
+
+// Version 2 adds the material reference per vertex; version 1 files (without it) still load.
+static const double FORMAT_VERSION = 2;
+
+void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write) const {
+  static long writes = 0; // -checkpoint_crash_test K: SIGKILL halfway through the K-th write
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  const std::string partial = path + ".partial";
+  int ok = 1;
+  std::string err;
+  if (rank == 0) {
+    try {
+      {
+        H5File f(partial, H5File::create);
+        f.set("format", "fsi_app checkpoint");
+        f.set("version", FORMAT_VERSION);
+        f.set("scene", scene);
+        f.set("step", (double)step);
+        f.set("time", time);
+        f.set("dt", dt);
+        f.set("easy_run", (double)easy_run);
+        f.write("/dofs/keys", dofs.keys, 4);
+        f.write("/dofs/state", dofs.values, dofs.keys.empty() ? 1 : dofs.values.size() /
+                                                                        (dofs.keys.size() / 4));
+        if (++writes == crash_at_write) raise(SIGKILL); // a run killed while writing (tests)
+        std::vector<double> dm, mat;
+        for (size_t i = 0; i < vertices.values.size() / 6; ++i)
+          for (int d = 0; d < 3; ++d) {
+            dm.push_back(vertices.values[6 * i + d]);
+            mat.push_back(vertices.values[6 * i + 3 + d]);
+          }
+        f.write("/vertices/keys", vertices.keys, 3);
+        f.write("/vertices/mesh_displacement", dm, 3);
+        f.write("/vertices/material_reference", mat, 3);
+        std::string names;
+        for (auto &[name, items] : hemo) {
+          names += (names.empty() ? "" : ",") + name;
+          f.write("/hemo/" + name + "/keys", items.keys, 3);
+          f.write("/hemo/" + name + "/accumulators", items.values, 4);
+        }
+        if (!hemo_window.empty()) {
+          f.set("hemo_surfaces", names);
+          f.write("/hemo/window", hemo_window);
+        }
+      } // closed
+      const int fd = open(partial.c_str(), O_RDONLY);
+      if (fd >= 0) {
+        fsync(fd);
+        close(fd);
+      }
+      if (std::rename(partial.c_str(), path.c_str()) != 0)
+        throw InputError("cannot rename " + partial + " to " + path);
+    } catch (std::exception &e) {
+      ok = 0;
+      err = e.what();
+    }
+  }
+  MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
+  if (!ok) throw InputError("checkpoint not written: " + err);
+}
+
+RunState RunState::read(MPI_Comm comm, const std::string &path, const std::string &scene) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  RunState s;
+  s.scene = scene;
+  double meta[5] = {0, 0, 0, 0, 0}; // step, time, dt, easy_run, dof count
+  std::string err;
+  if (rank == 0) {
+    try {
+      H5File f(path, H5File::open_read);
+      const double version = f.get_string("format") == "fsi_app checkpoint" ? f.get("version") : 0;
+      if (version != 1 && version != FORMAT_VERSION)
+        throw InputError("'" + path + "' is not an fsi_app checkpoint of this version");
+      if (f.get_string("scene") != scene)
+        throw InputError("restart file '" + path + "' was written by another scene (" +
+                         f.get_string("scene") + "; this one: " + scene +
+                         "): restart with the options of the run that wrote it");
+      meta[0] = f.get("step");
+      meta[1] = f.get("time");
+      meta[2] = f.get("dt");
+      meta[3] = f.get("easy_run");
+      s.dofs.keys = f.read("/dofs/keys");
+      s.dofs.values = f.read("/dofs/state");
+      meta[4] = (double)(s.dofs.keys.size() / 4);
+      s.vertices.keys = f.read("/vertices/keys");
+      const auto dm = f.read("/vertices/mesh_displacement");
+      // Version 1: the material reference was the mesh (the vertex key).
+      const auto mat = f.has("/vertices/material_reference")
+                           ? f.read("/vertices/material_reference")
+                           : s.vertices.keys;
+      for (size_t i = 0; i < dm.size() / 3; ++i) {
+        for (int d = 0; d < 3; ++d)
+          s.vertices.values.push_back(dm[3 * i + d]);
+        for (int d = 0; d < 3; ++d)
+          s.vertices.values.push_back(mat[3 * i + d]);
+      }
+      if (f.has("/hemo/window")) {
+        s.hemo_window = f.read("/hemo/window");
+        std::stringstream names(f.get_string("hemo_surfaces"));
+        std::string n;
+        while (std::getline(names, n, ','))
+          if (!n.empty()) {
+            s.hemo[n].keys = f.read("/hemo/" + n + "/keys");
+            s.hemo[n].values = f.read("/hemo/" + n + "/accumulators");
+          }
+      }
+    } catch (InputError &e) {
+      err = e.what();
+    }
+  }
+  int len = (int)err.size();
+  MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+  if (len) {
+    err.resize(len);
+    MPI_Bcast(err.data(), len, MPI_CHAR, 0, comm);
+    throw InputError(err);
+  }
+  MPI_Bcast(meta, 5, MPI_DOUBLE, 0, comm);
+  s.step = std::lround(meta[0]);
+  s.time = meta[1];
+  s.dt = meta[2];
+  s.easy_run = std::lround(meta[3]);
+  s.n_dofs = std::lround(meta[4]);
+  return s;
+}
+
+} // namespace fsi

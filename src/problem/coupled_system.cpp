@@ -1,0 +1,205 @@
+#include "fsi/problem/coupled_system.hpp"
+#include "fsi/run/stages.hpp"
+
+namespace fsi {
+
+static PetscErrorCode residual_cb(SNES snes, Vec U, Vec F, void *ctx) {
+  try {
+    if (!static_cast<CoupledSystem *>(ctx)->residual(U, F))
+      PetscCall(SNESSetFunctionDomainError(snes));
+  } catch (std::exception &e) {
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
+  }
+  return 0;
+}
+
+static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
+  try {
+    static_cast<CoupledSystem *>(ctx)->jacobian(U, J);
+  } catch (std::exception &e) {
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "%s", e.what());
+  }
+  return 0;
+}
+
+CoupledSystem::CoupledSystem(const Space &space) : space_(space) {
+  F_ = space.create_global();
+  Uloc_ = space.create_local();
+  FSI_CALL(VecDuplicate(Uloc_, &Floc_));
+}
+
+CoupledSystem::~CoupledSystem() {
+  for (Vec *v : {&F_, &Uloc_, &Floc_})
+    if (*v) VecDestroy(v);
+  if (J_) MatDestroy(&J_);
+  if (snes_) SNESDestroy(&snes_);
+}
+
+// The Jacobian's nonzero pattern from the modules' element dof lists (every dof of an element
+// couples with every other) plus the diagonal: exact for the modules the scene switched on (a
+// solid cell has no pressure coupling).
+void CoupledSystem::build_pattern() {
+  MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
+  ISLocalToGlobalMapping l2g = space_.l2g;
+  Mat pre;
+  FSI_CALL(MatCreate(comm, &pre));
+  FSI_CALL(MatSetSizes(pre, space_.n_owned, space_.n_owned, PETSC_DETERMINE, PETSC_DETERMINE));
+  FSI_CALL(MatSetType(pre, MATPREALLOCATOR));
+  FSI_CALL(MatSetLocalToGlobalMapping(pre, l2g, l2g));
+  FSI_CALL(MatSetUp(pre));
+  std::vector<double> zeros(max_element_dofs * max_element_dofs, 0.0);
+  for (auto &m : modules_) {
+    std::vector<PetscInt> dofs;
+    int n = 0;
+    m->element_dofs(dofs, n);
+    if (n > max_element_dofs)
+      throw PetscFailure("internal: module '" + m->name() + "' has " + std::to_string(n) +
+                         " dofs per element; CoupledSystem::max_element_dofs is " +
+                         std::to_string(max_element_dofs));
+    for (size_t e = 0; n > 0 && e < dofs.size() / n; ++e)
+      FSI_CALL(
+          MatSetValuesLocal(pre, n, &dofs[n * e], n, &dofs[n * e], zeros.data(), INSERT_VALUES));
+  }
+  for (PetscInt r = space_.rstart; r < space_.rstart + space_.n_owned; ++r)
+    FSI_CALL(MatSetValue(pre, r, r, 0.0, INSERT_VALUES));
+  FSI_CALL(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
+  if (J_) FSI_CALL(MatDestroy(&J_));
+  FSI_CALL(MatCreate(comm, &J_));
+  FSI_CALL(MatSetSizes(J_, space_.n_owned, space_.n_owned, PETSC_DETERMINE, PETSC_DETERMINE));
+  FSI_CALL(MatSetType(J_, MATAIJ));
+  FSI_CALL(MatSetOptionsPrefix(J_, "jac_"));
+  FSI_CALL(MatSetLocalToGlobalMapping(J_, l2g, l2g));
+  FSI_CALL(MatPreallocatorPreallocate(pre, PETSC_TRUE, J_));
+  FSI_CALL(MatDestroy(&pre));
+  FSI_CALL(MatSetOption(J_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  for (auto &m : modules_)
+    m->pattern_built();
+  ++cost_.pattern_builds;
+  if (snes_) FSI_CALL(SNESSetJacobian(snes_, J_, J_, jacobian_cb, this));
+}
+
+void CoupledSystem::setup_solver() {
+  MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
+  build_pattern();
+  FSI_CALL(SNESCreate(comm, &snes_));
+  FSI_CALL(SNESSetFunction(snes_, F_, residual_cb, this));
+  FSI_CALL(SNESSetJacobian(snes_, J_, J_, jacobian_cb, this));
+  FSI_CALL(SNESSetFromOptions(snes_));
+  KSP ksp;
+  PC pc;
+  FSI_CALL(SNESGetKSP(snes_, &ksp));
+  FSI_CALL(KSPGetPC(ksp, &pc));
+  PetscBool fs;
+  FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
+  if (fs) {
+    // The solid's elasticity operator: GAMG builds its coarse spaces from the rigid-body modes.
+    if (rigid_modes_) compose_rigid_body_modes(space_.is_velocity, space_.velocity_node_X);
+    FSI_CALL(PCFieldSplitSetIS(pc, "velocity", space_.is_velocity));
+    FSI_CALL(PCFieldSplitSetIS(pc, "pressure", space_.is_pressure));
+  }
+}
+
+void CoupledSystem::step_size_changed() {
+  PetscInt lag;
+  FSI_CALL(SNESGetLagJacobian(snes_, &lag));
+  if (lag == -1) FSI_CALL(SNESSetLagJacobian(snes_, -2));
+  FSI_CALL(SNESGetLagPreconditioner(snes_, &lag));
+  if (lag == -1) FSI_CALL(SNESSetLagPreconditioner(snes_, -2));
+}
+
+SolveStats CoupledSystem::solve(Vec U) {
+  bool changed = false;
+  for (auto &m : modules_)
+    changed = changed || m->couplings_changed();
+  if (changed) build_pattern(); // before the solve: SNES and its KSP take the new matrix
+  // Dirichlet values into the initial guess.
+  PetscScalar *u;
+  FSI_CALL(VecGetArray(U, &u));
+  for (auto &[dof, val] : bc_values_)
+    if (space_.owned(dof)) u[space_.local_to_global[dof] - space_.rstart] = val;
+  FSI_CALL(VecRestoreArray(U, &u));
+
+  FSI_CALL(PetscLogStagePush(Stages::get().solve));
+  inverted_ = false;
+  const double t0 = MPI_Wtime();
+  FSI_CALL(SNESSolve(snes_, nullptr, U));
+  cost_.nonlinear_solve_time += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+  SolveStats s;
+  FSI_CALL(SNESGetIterationNumber(snes_, &s.newton));
+  FSI_CALL(SNESGetLinearSolveIterations(snes_, &s.krylov));
+  FSI_CALL(SNESGetConvergedReason(snes_, &s.reason));
+  s.inverted = inverted_;
+  return s;
+}
+
+bool CoupledSystem::residual(Vec U, Vec F) {
+  FSI_CALL(PetscLogStagePush(Stages::get().assembly));
+  const double t0 = MPI_Wtime();
+  space_.to_local(U, Uloc_);
+  FSI_CALL(VecZeroEntries(Floc_));
+  const PetscScalar *u;
+  PetscScalar *f;
+  FSI_CALL(VecGetArrayRead(Uloc_, &u));
+  FSI_CALL(VecGetArray(Floc_, &f));
+  ctx_.U = u;
+  bool valid = true;
+  try {
+    for (auto &m : modules_)
+      m->add_residual(ctx_, f);
+    bcs_->add_residual(ctx_, f);
+  } catch (SolveError &) { // an inverted solid element: outside the domain of the residual
+    valid = false;
+  }
+  FSI_CALL(VecRestoreArray(Floc_, &f));
+  FSI_CALL(VecZeroEntries(F));
+  space_.add_to_global(Floc_, F);
+  // Dirichlet rows: u - g.
+  PetscScalar *fg;
+  FSI_CALL(VecGetArray(F, &fg));
+  for (auto &[dof, val] : bc_values_)
+    if (space_.owned(dof)) fg[space_.local_to_global[dof] - space_.rstart] = u[dof] - val;
+  FSI_CALL(VecRestoreArray(F, &fg));
+  FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
+  ctx_.U = nullptr;
+  cost_.residuals++;
+  cost_.residual_time += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+  int ok = valid, all_ok;
+  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, PetscObjectComm((PetscObject)F));
+  if (!all_ok) inverted_ = true;
+  return all_ok;
+}
+
+void CoupledSystem::jacobian(Vec U, Mat J) {
+  FSI_CALL(PetscLogStagePush(Stages::get().assembly));
+  const double t0 = MPI_Wtime();
+  space_.to_local(U, Uloc_);
+  FSI_CALL(MatZeroEntries(J));
+  const PetscScalar *u;
+  FSI_CALL(VecGetArrayRead(Uloc_, &u));
+  ctx_.U = u;
+  for (auto &m : modules_)
+    m->add_jacobian(ctx_, J);
+  bcs_->add_jacobian(ctx_, J);
+  for (auto &[dof, val] : bc_values_)
+    if (space_.owned(dof))
+      FSI_CALL(MatSetValue(J, space_.local_to_global[dof], space_.local_to_global[dof], 1.0,
+                           ADD_VALUES));
+  FSI_CALL(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  if (pcd_) pcd_->assemble(ctx_);
+  FSI_CALL(VecRestoreArrayRead(Uloc_, &u));
+  ctx_.U = nullptr;
+  cost_.jacobians++;
+  cost_.jacobian_time += MPI_Wtime() - t0;
+  FSI_CALL(PetscLogStagePop());
+  if (split_ && !split_->configured()) { // the preconditioner's first setup: solver time
+    KSP ksp;
+    FSI_CALL(SNESGetKSP(snes_, &ksp));
+    split_->configure(ksp, J_);
+  }
+}
+
+} // namespace fsi

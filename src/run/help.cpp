@@ -1,0 +1,169 @@
+#include "fsi/run/help.hpp"
+#include "fsi/boundary/boundary_condition.hpp"
+#include "fsi/run/simulation.hpp"
+
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+namespace {
+
+struct OptionDoc {
+  const char *name, *def, *unit, *meaning;
+};
+struct Section {
+  const char *title;
+  std::vector<OptionDoc> options;
+};
+
+// "-" in the unit column: a dimensionless number, a name or a switch.
+const std::vector<Section> &sections() {
+  static const std::vector<Section> s = {
+      {"Scene and outputs",
+       {{"scene_name", "scene", "-", "the scene's name (results/<name> by default)"},
+        {"physics", "(required)", "-", "physics switched on: fluid, solid or fluid,solid"},
+        {"out_dir", "results/<scene>", "-", "output folder"},
+        {"out_fields_every", "0", "steps", "XDMF/HDF5 fields every N steps (0: none)"},
+        {"checkpoint_every", "0", "steps",
+         "write checkpoint.h5 every N steps (0: only on failure, signal, and at the end if N > 0)"},
+        {"checkpoint_crash_test", "0", "-", "tests only: SIGKILL halfway through the K-th checkpoint"},
+        {"restart", "", "-", "resume from this checkpoint (same scene options, any rank count)"},
+        {"sim_rebuild_every", "0", "steps",
+         "rebuild the whole discretisation from its state every N steps (checks state transfer)"},
+        {"allow_unused_options", "false", "-", "otherwise an option nobody reads is an error"},
+        {"ic", "rest", "-", "initial state: rest | velocity | exact"},
+        {"ic_velocity", "", "m/s", "uniform initial velocity vx,vy,vz for -ic velocity"}}},
+      {"Mesh",
+       {{"mesh_file", "", "-", "a ready gmsh .msh; physical names become regions/boundaries"},
+        {"mesh_geo", "", "-", "or a gmsh .geo source, meshed with the gmsh API"},
+        {"mesh_h", "0.1", "m", "mesh size passed to the .geo as h"},
+        {"mesh_params", "", "-", "further .geo parameters name=value,..."},
+        {"mesh_cache_dir", "results/.mesh_cache", "-", "where meshed .geo files are cached"}}},
+      {"Time integration (PETSc TS names)",
+       {{"ts_type", "alpha", "-", "alpha (generalized-alpha) | steady (static load steps)"},
+        {"ts_dt", "1e-3", "s", "time step"},
+        {"ts_max_steps", "10 (alpha), 1 (steady)", "-", "number of steps (wins over ts_max_time)"},
+        {"ts_max_time", "", "s", "end time (a whole number of steps)"},
+        {"ts_alpha_radius", "0.5", "-", "spectral radius rho_inf in [0, 1]"},
+        {"ts_adapt_type", "cut", "-", "cut: retry a failed step with a smaller dt | none"},
+        {"ts_adapt_scale_solve_failed", "0.5", "-", "dt factor after a failed step, in (0, 1)"},
+        {"ts_adapt_dt_min", "dt/1000", "s", "below this step size the run stops (exit 3)"},
+        {"step_grow_after", "3", "steps", "easy steps before dt grows back by 1/factor"},
+        {"step_easy_newton", "4", "-", "a step with at most this many Newton iterations is easy"}}},
+      {"Fluid (-physics fluid)",
+       {{"fluid_region", "fluid", "-", "physical volume of the fluid"},
+        {"fluid_rho", "1000", "kg/m^3", "density"},
+        {"fluid_mu", "0.003", "Pa s", "dynamic viscosity"},
+        {"fluid_model", "navier_stokes", "-", "navier_stokes | stokes (no convection)"},
+        {"fluid_quad_degree", "4", "-", "quadrature degree"},
+        {"fluid_direct_insertion", "true", "-", "element matrices straight into the AIJ arrays"}}},
+      {"Solid (-physics solid)",
+       {{"solid_region", "solid", "-", "physical volume of the solid"},
+        {"solid_rho", "1000", "kg/m^3", "reference density"},
+        {"solid_gravity", "0,0,0", "m/s^2", "body acceleration gx,gy,gz"},
+        {"solid_material", "linear", "-", "linear | svk | neo_hookean | mooney_rivlin"},
+        {"solid_E", "(required: linear, svk)", "Pa", "Young's modulus"},
+        {"solid_nu", "0.3", "-", "Poisson's ratio"},
+        {"solid_mu", "(neo_hookean)", "Pa", "shear modulus"},
+        {"solid_kappa", "(neo_hookean, mooney_rivlin)", "Pa", "bulk modulus"},
+        {"solid_C10", "(mooney_rivlin)", "Pa", "Mooney-Rivlin C10"},
+        {"solid_C01", "0", "Pa", "Mooney-Rivlin C01"},
+        {"solid_quad_degree", "4", "-", "quadrature degree"},
+        {"solid_direct_insertion", "true", "-", "element matrices straight into the AIJ arrays"}}},
+      {"Mesh motion (ALE)",
+       {{"ale_motion", "none", "-", "none | prescribed (verification) | laplace (follows the solid)"},
+        {"ale_amplitude", "0.1", "m", "prescribed: bubble amplitude"},
+        {"ale_time", "1", "s", "prescribed: time over which the amplitude is reached"},
+        {"ale_stiffening", "0", "-", "chi in k = (V_max/V_e)^chi (0 Laplace, 1 Jacobian-stiffened)"},
+        {"ale_slip_boundaries", "", "-", "planes where the mesh slides (inlet/outlet)"},
+        {"ale_geometry_iterations", "0", "-", "0: geometry lagged; N: iterate the mesh in the step"},
+        {"ale_geometry_rtol", "1e-6", "-", "relative mesh change that ends geometry iterations"},
+        {"ale_interface", "", "-", "mass-conservative fluid-solid interface (its physical name)"},
+        {"ale_min_jacobian", "0", "-", "stop when a fluid cell's volume ratio reaches this"},
+        {"ale_max_skewness", "0.99", "-", "stop when a fluid cell's skewness reaches this"},
+        {"ale_ksp_*, ale_pc_*", "cg, gamg", "-", "the mesh-motion linear solver"}}},
+      {"Boundary conditions (per boundary <b> in -bc_names)",
+       {{"bc_names", "", "-", "boundaries with a condition; unlisted ones are traction-free"},
+        {"bc_<b>_type", "(required)", "-", "one of the types listed below"},
+        {"bc_<b>_components", "all (Dirichlet types)", "-", "velocity components fixed: x,y,z"},
+        {"bc_<b>_value", "0", "m/s | Pa | m", "velocity scale, pressure, traction or displacement"},
+        {"bc_<b>_direction", "", "-", "direction x,y,z (velocity, displacement, traction)"},
+        {"bc_<b>_profile", "uniform", "-", "velocity: uniform | parabolic | exact; displacement: uniform | exact"},
+        {"bc_<b>_center", "", "m", "parabolic: a point on the axis"},
+        {"bc_<b>_radius", "", "m", "parabolic: the radius"},
+        {"bc_<b>_backflow_beta", "1", "-", "pressure: backflow stabilisation (0 off)"},
+        {"bc_<b>_waveform", "constant", "-", "constant | step | pulse | cosine | sine | linear"},
+        {"bc_<b>_t_off", "", "s", "step, pulse: end time"},
+        {"bc_<b>_period", "", "s", "cosine, sine, linear: period"},
+        {"bc_<b>_offset", "0", "-", "cosine, sine: offset + cos(2 pi t / period)"},
+        {"bc_<b>_ramp", "0", "s", "smooth start over this time"}}},
+      {"Monitors and hemodynamics",
+       {{"monitor_surfaces", "", "-", "flux, area, force, mean pressure per named boundary"},
+        {"monitor_fluid_volume", "false", "-", "fluid volume per step"},
+        {"probe_points", "", "m", "fluid probes x,y,z;x,y,z"},
+        {"solid_probe_points", "", "m", "solid displacement probes at material points"},
+        {"monitor_solid_energy", "false", "-", "kinetic and stored energy of the solid"},
+        {"hemo_surfaces", "", "-", "walls for wall shear stress, TAWSS, OSI, RRT"},
+        {"hemo_window", "the whole run", "s", "averaging window"},
+        {"hemo_start", "0", "s", "start of the first window"}}},
+      {"Verification",
+       {{"exact_solution", "none", "-", "none | ethier_steinman | poiseuille | womersley"},
+        {"exact_G", "", "Pa/m", "poiseuille: pressure gradient"},
+        {"exact_A", "", "Pa/m", "womersley: pressure-gradient amplitude"},
+        {"exact_period", "", "s", "womersley: period"},
+        {"exact_R", "", "m", "pipe radius"},
+        {"exact_L", "0", "m", "pipe length (pressure level)"},
+        {"exact_displacement", "none", "-", "none | manufactured (solid)"},
+        {"exact_amplitude", "0.1", "m", "manufactured displacement amplitude"},
+        {"exact_wavenumber", "1", "1/m", "manufactured displacement wavenumber"}}},
+      {"Solver (PETSc; presets in petsc_options/)",
+       {{"snes_*, ksp_*, pc_*", "PETSc's", "-", "Newton and linear solver of the coupled system"},
+        {"fieldsplit_velocity_pc_type", "", "-", "fieldsplit: split velocity into fluid | solid"},
+        {"fieldsplit_pressure_pc_type", "", "-", "pcd: convection-aware Schur preconditioner"},
+        {"jac_*", "", "-", "options of the Jacobian matrix (prefix jac_)"}}},
+  };
+  return s;
+}
+
+} // namespace
+
+bool wants_help() {
+  PetscBool h = PETSC_FALSE, h2 = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-help", &h);
+  PetscOptionsHasName(nullptr, nullptr, "-h", &h2);
+  return h || h2;
+}
+
+int print_help(MPI_Comm comm) {
+  PetscPrintf(comm, "fsi_app: monolithic ALE fluid-structure interaction (P2P1 Navier-Stokes, "
+                    "hyperelastic solid, generalized-alpha, Newton).\n"
+                    "usage: mpirun -n 2 fsi_app -options_file scene.opts [-options_file "
+                    "petsc_options/preset.opts] [-option value ...]\n"
+                    "Every option: -name <default> [unit] meaning.  SI units throughout.\n");
+  for (auto &sec : sections()) {
+    PetscPrintf(comm, "\n%s:\n", sec.title);
+    for (auto &o : sec.options)
+      PetscPrintf(comm, "  -%-30s <%s> [%s] %s\n", o.name, o.def, o.unit, o.meaning);
+  }
+  PetscPrintf(comm, "\nBoundary-condition types (-bc_<b>_type):\n");
+  for (auto &t : boundary_types())
+    PetscPrintf(comm, "  %-20s (%s) %s\n", t.name, t.physics, t.help);
+  return 0;
+}
+
+void print_run_header(MPI_Comm comm, const Scene &scene, const Mesh &mesh, const Simulation &sim) {
+  int size;
+  MPI_Comm_size(comm, &size);
+  const Space &space = sim.space();
+  PetscPrintf(comm,
+              "fsi_app: scene '%s', %d rank(s), mesh %s: %d cells, %d vertices; dofs velocity %d, "
+              "pressure %d\n",
+              scene.name.c_str(), size, mesh.source.c_str(), (int)mesh.cells_global,
+              (int)mesh.vertices_global, (int)space.n_velocity, (int)space.n_pressure);
+  for (auto &m : sim.system().modules())
+    PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(),
+                (int)m->n_cells());
+}
+
+} // namespace fsi

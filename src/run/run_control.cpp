@@ -1,0 +1,58 @@
+#include "fsi/run/run_control.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <algorithm>
+#include <csignal>
+
+namespace fsi {
+
+static volatile sig_atomic_t g_stop_signal = 0;
+extern "C" void on_stop_signal(int sig) {
+  g_stop_signal = sig;
+}
+
+void install_stop_handlers() {
+  struct sigaction sa = {};
+  sa.sa_handler = on_stop_signal;
+  sa.sa_flags = SA_RESTART;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGTERM, SIGINT, SIGUSR1})
+    sigaction(sig, &sa, nullptr);
+}
+
+int stop_requested(MPI_Comm comm) {
+  int mine = g_stop_signal, any;
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any;
+}
+
+const char *signal_name(int sig) {
+  return sig == SIGTERM ? "SIGTERM" : sig == SIGINT ? "SIGINT" : "SIGUSR1";
+}
+
+void check_unused_options() {
+  if (opt::flag("allow_unused_options", false)) return;
+  PetscInt left = 0;
+  char **names, **values;
+  FSI_CALL(PetscOptionsLeftGet(nullptr, &left, &names, &values));
+  std::string list;
+  for (PetscInt i = 0; i < left; ++i)
+    list += std::string(i ? ", -" : "-") + names[i];
+  const PetscInt n_left = left; // LeftRestore resets the count
+  FSI_CALL(PetscOptionsLeftRestore(nullptr, &left, &names, &values));
+  if (n_left > 0)
+    throw InputError("option(s) nobody reads: " + list +
+                     " (a typo? see -help; or pass -allow_unused_options)");
+}
+
+void progress(MPI_Comm comm, long step, double t, double t_end, double dt, long newton,
+              long krylov, double step_s, double elapsed, double t0) {
+  const double done = (t - t0) / (t_end - t0);
+  const double eta = done > 0 ? std::max(0.0, elapsed / done * (1 - done)) : 0;
+  PetscPrintf(comm,
+              "step %5ld  t = %.4e/%.4e s  dt %.2e  newton %2d  krylov %4d  %.2f s/step  elapsed "
+              "%.1f s  eta %.1f s\n",
+              step, t, t_end, dt, (int)newton, (int)krylov, step_s, elapsed, eta);
+}
+
+} // namespace fsi

@@ -1,0 +1,185 @@
+#include "fsi/run/run_report.hpp"
+
+#include <algorithm>
+#include <sys/resource.h>
+
+namespace fsi {
+
+static double peak_memory_mb() {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;
+}
+
+static double max_over_ranks(MPI_Comm comm, double v) {
+  double m;
+  MPI_Allreduce(&v, &m, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return m;
+}
+
+RunReport::RunReport(MPI_Comm comm, const Scene &scene, const std::vector<std::string> &columns)
+    : comm_(comm), scene_(scene), names_(columns) {}
+
+void RunReport::step(const StepStats &s, double t, const std::vector<double> &v) {
+  ++steps_;
+  newton_ += s.newton;
+  krylov_ += s.krylov;
+  newton_max_ = std::max<long>(newton_max_, s.newton);
+  krylov_max_ = std::max<long>(krylov_max_, s.krylov);
+  if (min_.empty()) {
+    min_ = max_ = last_ = v;
+    t_min_.assign(v.size(), t);
+    t_max_ = t_min_;
+  }
+  for (size_t k = 0; k < v.size() && k < min_.size(); ++k) {
+    if (v[k] < min_[k]) min_[k] = v[k], t_min_[k] = t;
+    if (v[k] > max_[k]) max_[k] = v[k], t_max_[k] = t;
+    last_[k] = v[k];
+  }
+}
+
+void RunReport::absorb(const Simulation &sim) {
+  const CostCounters &c = sim.system().cost();
+  jacobians_ += c.jacobians;
+  residuals_ += c.residuals;
+  pattern_builds_ += c.pattern_builds;
+  jacobian_time_ += c.jacobian_time;
+  residual_time_ += c.residual_time;
+  solve_time_ += c.nonlinear_solve_time;
+  mesh_motion_time_ += sim.ale().seconds();
+}
+
+void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim,
+                      const StepControl &control, const RunOutcome &o, double wall,
+                      const std::string &restart, long first_step, double first_time,
+                      const std::string &checkpoint) const {
+  int size;
+  MPI_Comm_size(comm_, &size);
+  const Space &space = sim.space();
+  const double mem_max = max_over_ranks(comm_, peak_memory_mb());
+  const double mem_min = -max_over_ranks(comm_, -peak_memory_mb());
+  const double jt = max_over_ranks(comm_, jacobian_time_), rt = max_over_ranks(comm_, residual_time_);
+  // Linear solver time (factorisation / preconditioner setup and Krylov) = Newton time less
+  // assembly.
+  const double ls = max_over_ranks(comm_, solve_time_ - jacobian_time_ - residual_time_);
+  PetscInt cc[2] = {sim.fluid() ? sim.fluid()->n_cells() : 0,
+                    sim.solid() ? sim.solid()->n_cells() : 0},
+           cg[2];
+  MPI_Allreduce(cc, cg, 2, MPIU_INT, MPI_SUM, comm_);
+  const PetscInt fc_g = cg[0], sc_g = cg[1];
+  const double per_step = steps_ ? (wall - setup_time_) / steps_ : 0.0;
+
+  std::vector<std::string> active;
+  for (auto &m : sim.system().modules())
+    active.push_back(m->name());
+  if (sim.ale().moving()) active.push_back("mesh motion: " + sim.ale().motion()->name());
+  Json dofs, times, iters, cost, j;
+  dofs.set("velocity", (long)space.n_velocity)
+      .set("pressure", (long)space.n_pressure)
+      .set("pressure_held_outside_fluid", sim.boundaries().pressure_dofs_outside_fluid())
+      .set("total", (long)(space.n_velocity + space.n_pressure));
+  times.set("total", wall)
+      .set("setup", setup_time_)
+      .set("jacobian_assembly", jt)
+      .set("residual_assembly", rt)
+      .set("linear_solver", ls)
+      .set("mesh_motion", mesh_motion_time_)
+      .set("rebuild", rebuild_time_)
+      .set("output", output_time_)
+      .set("per_step", per_step);
+  iters.set("newton_total", newton_)
+      .set("newton_max_per_step", newton_max_)
+      .set("krylov_total", krylov_)
+      .set("krylov_max_per_step", krylov_max_)
+      .set("newton_mean_per_step", steps_ ? double(newton_) / steps_ : 0.0)
+      .set("krylov_mean_per_step", steps_ ? double(krylov_) / steps_ : 0.0)
+      .set("krylov_mean_per_newton", newton_ ? double(krylov_) / newton_ : 0.0);
+  cost.set("jacobians", jacobians_)
+      .set("residuals", residuals_)
+      .set("matrix_patterns", pattern_builds_)
+      .set("linear_solver_seconds_per_newton", newton_ ? ls / newton_ : 0.0)
+      .set("jacobian_tets_per_second_per_rank",
+           jt > 0 ? double(fc_g + sc_g) / size * jacobians_ / jt : 0.0)
+      .set("residual_tets_per_second_per_rank",
+           rt > 0 ? double(fc_g + sc_g) / size * residuals_ / rt : 0.0)
+      .set("peak_memory_mb_per_rank_max", mem_max)
+      .set("peak_memory_mb_per_rank_min", mem_min);
+  const TimeParams &tp = scene_.time;
+  j.set("scene", scene_.name)
+      .set("physics", active)
+      .set("ranks", size)
+      .set("mesh", mesh.source)
+      .set("cells", (long)mesh.cells_global)
+      .set("fluid_cells", (long)fc_g)
+      .set("solid_cells", (long)sc_g)
+      .set("vertices", (long)mesh.vertices_global)
+      .set("dofs", dofs)
+      .set("time_scheme", tp.steady ? "steady" : "generalized-alpha")
+      .set("dt", tp.dt)
+      .set("rho_inf", tp.rho_inf)
+      .set("steps", steps_)
+      .set("final_step", sim.step_index())
+      .set("final_time", sim.time())
+      .set("rebuilds", rebuilds_)
+      .set("iterations", iters)
+      .set("wall_time", times)
+      .set("cost", cost)
+      .set("converged", o.converged)
+      .set("reason", o.reason);
+  Json sc;
+  sc.set("adapt", control.enabled ? "cut" : "none")
+      .set("failed_steps", failed_)
+      .set("cuts", control.cuts)
+      .set("grows", control.grows)
+      .set("dt_final", control.dt);
+  j.set("step_control", sc);
+  if (!restart.empty()) {
+    Json r;
+    r.set("file", restart).set("step", first_step).set("time", first_time);
+    j.set("restarted_from", r);
+  }
+  if (!checkpoint.empty()) j.set("checkpoint", checkpoint);
+  if (sim.wall_shear().active()) j.set("hemodynamics", sim.wall_shear().summary());
+  if (sim.monitors().has_exact() && steps_ > 0) {
+    const ErrorNorms &e = sim.monitors().last_errors();
+    Json err;
+    err.set("velocity_l2", e.v_l2)
+        .set("pressure_l2", e.p_l2)
+        .set("velocity_l2_relative", e.v_l2 / e.v_norm)
+        .set("pressure_l2_relative", e.p_l2 / e.p_norm);
+    j.set("error_final", err);
+  }
+  if (sim.solid_monitors().has_exact() && steps_ > 0) {
+    Json err;
+    err.set("displacement_l2", sim.solid_monitors().error_l2())
+        .set("displacement_l2_relative", sim.solid_monitors().error_relative());
+    j.set("error_final", err);
+  }
+  if (steps_ > 0) {
+    Json m;
+    for (size_t k = 0; k < min_.size() && k < names_.size(); ++k) {
+      Json c;
+      c.set("min", min_[k]).set("t_min", t_min_[k]).set("max", max_[k]).set("t_max", t_max_[k]);
+      c.set("final", last_[k]);
+      m.set(names_[k], c);
+    }
+    j.set("monitors", m);
+  }
+  out.write_summary(j);
+  // The cost line: what this run paid, per stage (max over ranks), per step and per iteration.
+  const char *status = o.converged ? "done" : o.exit_code == 3 ? "FAILED" : "STOPPED";
+  PetscPrintf(comm_,
+              "fsi_app: %s: %ld steps, %.3g s/step; Newton %.2f/step (max %ld), Krylov %.1f/Newton "
+              "(max %ld/step); wall %.2f s = setup %.2f + Jacobian %.2f + residual %.2f + linear "
+              "solver %.2f + mesh motion %.2f + rebuild %.2f + output %.2f + other %.2f; %ld dofs "
+              "(velocity %ld, pressure %ld); peak memory %.0f MB/rank; results in %s\n",
+              status, steps_, per_step, steps_ ? double(newton_) / steps_ : 0.0, newton_max_,
+              newton_ ? double(krylov_) / newton_ : 0.0, krylov_max_, wall, setup_time_, jt, rt,
+              ls, mesh_motion_time_, rebuild_time_, output_time_,
+              std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ -
+                                rebuild_time_ - output_time_),
+              (long)(space.n_velocity + space.n_pressure), (long)space.n_velocity,
+              (long)space.n_pressure, mem_max, out.dir().c_str());
+}
+
+} // namespace fsi

@@ -1,0 +1,348 @@
+#include "fsi/run/simulation.hpp"
+#include "fsi/physics/interface_flux.hpp"
+#include "fsi/physics/material.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+Scene Scene::from_options() {
+  Scene s;
+  s.name = opt::string("scene_name", "scene");
+  s.physics = opt::list("physics");
+  if (s.physics.empty())
+    throw InputError("the scene switches no physics on: give -physics fluid, solid or both");
+  for (auto &p : s.physics) {
+    if (p == "fluid")
+      s.fluid = true;
+    else if (p == "solid")
+      s.solid = true;
+    else if (p == "ale")
+      throw InputError("-physics ale is not a physics: the mesh motion is chosen by -ale_motion "
+                       "none|prescribed|laplace");
+    else
+      throw InputError("-physics has unknown value '" + p + "'; use: fluid, solid");
+  }
+  s.time = TimeParams::from_options();
+  return s;
+}
+
+std::string Scene::tag() const {
+  char tag[200];
+  std::snprintf(tag, sizeof tag, "physics %s, %s", opt::join(physics, ",").c_str(),
+                time.steady
+                    ? "steady"
+                    : ("generalized-alpha rho_inf " + std::to_string(time.rho_inf)).c_str());
+  return tag;
+}
+
+Simulation::Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &out,
+                       const RunState *state)
+    : scene_(scene), out_(out) {
+  space_.build(mesh);
+  keys_ = std::make_unique<Checkpoint>(space_);
+  // The solid's material reference comes with a state (the mesh may be a remeshed one);
+  // a fresh run starts from the mesh as built.
+  std::vector<double> dn;
+  if (state)
+    keys_->vertices(*state, dn, material_X_);
+  else
+    material_X_ = space_.X;
+  build_physics(mesh);
+  U_ = space_.create_global();
+  FSI_CALL(PetscObjectSetName((PetscObject)U_, "solution"));
+  Sloc_ = space_.create_local();
+  initialize(opt::choice("ic", "rest", {"rest", "exact", "velocity"}));
+  if (state) {
+    time_->set_time(state->time, state->step);
+    keys_->dofs(*state, {time_->velocity(), time_->acceleration(), time_->displacement()});
+    ale_->restore(dn);
+    FSI_CALL(VecCopy(time_->velocity(), U_));
+    wss_.load(*state);
+  }
+}
+
+Simulation::~Simulation() {
+  if (U_) VecDestroy(&U_);
+  if (Sloc_) VecDestroy(&Sloc_);
+}
+
+// Physics modules switched on by the scene, their boundary conditions, mesh motion, solver and
+// monitors: what the scene does not ask for is not built.
+void Simulation::build_physics(const Mesh &mesh) {
+  time_ = std::make_unique<GeneralizedAlpha>(space_, scene_.time);
+  system_ = std::make_unique<CoupledSystem>(space_);
+  if (scene_.fluid) {
+    auto f = std::make_unique<FluidModule>(space_, mesh, FluidParams::from_options());
+    fluid_ = f.get();
+    exact_ = make_exact_flow(fluid_->params().rho, fluid_->params().mu);
+    system_->add_module(std::move(f));
+  }
+  if (scene_.solid) {
+    exact_solid_ = make_exact_solid();
+    auto s = std::make_unique<SolidModule>(space_, mesh, material_X_, SolidParams::from_options(),
+                                           make_material(), exact_solid_.get());
+    solid_ = s.get();
+    system_->add_module(std::move(s));
+  }
+  const std::vector<PetscInt> *fluid_cells = fluid_ ? &fluid_->cells() : nullptr;
+  ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells), fluid_cells);
+  const std::string iface = opt::string("ale_interface", "");
+  if (!iface.empty()) {
+    if (!fluid_ || !ale_->moving())
+      throw InputError("-ale_interface needs a fluid and a mesh motion (-ale_motion laplace)");
+    system_->add_module(std::make_unique<InterfaceMassFlux>(space_, mesh, iface, fluid_->cells(),
+                                                            material_X_));
+  }
+  bcs_ = std::make_unique<Boundaries>(mesh, space_, exact_.get(), exact_solid_.get(),
+                                      fluid_ ? fluid_->params().mu : 0.0,
+                                      fluid_ ? fluid_->params().rho : 0.0, material_X_, fluid_cells);
+  system_->set_boundaries(bcs_.get());
+  system_->set_rigid_body_modes(solid_ != nullptr);
+  if (FluidSolidSplit::requested(fluid_ != nullptr, solid_ != nullptr))
+    system_->set_fluid_solid_split(std::make_unique<FluidSolidSplit>(space_, solid_->cells()));
+  if (PcdOperators::requested(fluid_ != nullptr))
+    system_->set_pcd(std::make_unique<PcdOperators>(space_, mesh, *fluid_, *bcs_));
+  system_->setup_solver();
+  mon_.setup(mesh, space_, fluid_, exact_.get());
+  smon_.setup(space_, solid_, exact_solid_.get());
+  wss_.setup(mesh, space_, fluid_, exact_.get(), out_.dir, scene_.time.t_end, out_.hemo);
+  if (out_.fields_every > 0) {
+    FieldSet set;
+    set.pressure = fluid_ != nullptr;
+    set.mesh_displacement = ale_->moving();
+    set.displacement = solid_ != nullptr;
+    set.base = out_.fields;
+    fields_ = std::make_unique<FieldWriter>(space_, out_.dir, set);
+  }
+}
+
+// Initial state at t = 0: rest, a uniform velocity, or the exact flow (-ic rest|velocity|exact).
+void Simulation::initialize(const std::string &ic) {
+  time_->set_time(0, 0);
+  ale_->initialize();
+  Vec Vn = time_->velocity(), An = time_->acceleration();
+  FSI_CALL(VecZeroEntries(U_));
+  FSI_CALL(VecZeroEntries(Vn));
+  FSI_CALL(VecZeroEntries(An));
+  FSI_CALL(VecZeroEntries(time_->displacement()));
+  PetscSection ls;
+  FSI_CALL(DMGetLocalSection(space_.dm, &ls));
+  if (ic == "velocity") {
+    // A uniform initial velocity (-ic_velocity x,y,z [m/s]) on every node that no Dirichlet
+    // condition holds: e.g. a clamped block set vibrating.  u_0 = 0 and no load give a_0 = 0.
+    auto v0 = opt::reals("ic_velocity");
+    if (v0.size() != 3) throw InputError("-ic velocity needs -ic_velocity vx,vy,vz [m/s]");
+    PetscScalar *u;
+    FSI_CALL(VecGetArray(U_, &u));
+    const std::vector<char> &mask = bcs_->dirichlet_mask();
+    for (PetscInt v = space_.vStart; v < space_.eEnd; ++v) {
+      PetscInt off, dof;
+      FSI_CALL(PetscSectionGetFieldDof(ls, v, 0, &dof));
+      if (dof != 3) continue;
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v, 0, &off));
+      for (int d = 0; d < 3; ++d)
+        if (space_.owned(off + d) && !mask[off + d])
+          u[space_.local_to_global[off + d] - space_.rstart] = v0[d];
+    }
+    FSI_CALL(VecRestoreArray(U_, &u));
+    FSI_CALL(VecCopy(U_, Vn));
+  } else if (ic == "exact") {
+    if (!exact_) throw InputError("-ic exact needs -exact_solution");
+    // Values on every local node; the nodal time derivative follows the node along its mesh
+    // trajectory x(t) = X + d_m(t) (ALE), by a central difference of the exact flow.
+    std::vector<double> dm_m, dm_p;
+    const double eps = 1e-6 * (scene_.time.steady ? 1.0 : time_->dt()) + 1e-9;
+    ale_->mesh_at(-eps, dm_m);
+    ale_->mesh_at(eps, dm_p);
+    const std::vector<double> &d0 = ale_->displacement();
+    Vec Uloc = space_.create_local(), Aloc = space_.create_local();
+    PetscScalar *u, *a;
+    FSI_CALL(VecGetArray(Uloc, &u));
+    FSI_CALL(VecGetArray(Aloc, &a));
+    auto pos = [&](const std::vector<double> &d, int va, int vb, double x[3]) {
+      for (int k = 0; k < 3; ++k) {
+        x[k] = space_.X[3 * va + k] + d[3 * va + k];
+        if (vb >= 0) x[k] = 0.5 * (x[k] + space_.X[3 * vb + k] + d[3 * vb + k]);
+      }
+    };
+    auto set_node = [&](PetscInt off, int va, int vb) {
+      double x0[3], xm[3], xp[3], v0[3], vm[3], vp[3];
+      pos(d0, va, vb, x0);
+      pos(dm_m, va, vb, xm);
+      pos(dm_p, va, vb, xp);
+      exact_->velocity(x0, 0.0, v0);
+      exact_->velocity(xm, -eps, vm);
+      exact_->velocity(xp, eps, vp);
+      for (int k = 0; k < 3; ++k) {
+        u[off + k] = v0[k];
+        a[off + k] = (vp[k] - vm[k]) / (2 * eps);
+      }
+    };
+    const std::vector<double> &Xn = ale_->coordinates();
+    for (PetscInt v = space_.vStart; v < space_.vEnd; ++v) {
+      PetscInt off;
+      const int iv = (int)(v - space_.vStart);
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v, 0, &off));
+      set_node(off, iv, -1);
+      FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &off));
+      double x0[3] = {Xn[3 * iv], Xn[3 * iv + 1], Xn[3 * iv + 2]};
+      u[off] = exact_->pressure(x0, 0.0);
+    }
+    for (PetscInt e = space_.eStart; e < space_.eEnd; ++e) {
+      PetscInt off;
+      const PetscInt *cone;
+      FSI_CALL(DMPlexGetCone(space_.dm, e, &cone));
+      FSI_CALL(PetscSectionGetFieldOffset(ls, e, 0, &off));
+      set_node(off, (int)(cone[0] - space_.vStart), (int)(cone[1] - space_.vStart));
+    }
+    // Owned entries straight into the global vectors (every rank computed the same values).
+    PetscScalar *ug, *ag;
+    FSI_CALL(VecGetArray(U_, &ug));
+    FSI_CALL(VecGetArray(An, &ag));
+    for (PetscInt i = 0; i < space_.n_local; ++i)
+      if (space_.owned(i)) {
+        ug[space_.local_to_global[i] - space_.rstart] = u[i];
+        ag[space_.local_to_global[i] - space_.rstart] = a[i];
+      }
+    FSI_CALL(VecRestoreArray(U_, &ug));
+    FSI_CALL(VecRestoreArray(An, &ag));
+    FSI_CALL(VecRestoreArray(Uloc, &u));
+    FSI_CALL(VecRestoreArray(Aloc, &a));
+    FSI_CALL(VecDestroy(&Uloc));
+    FSI_CALL(VecDestroy(&Aloc));
+    FSI_CALL(VecCopy(U_, Vn));
+  }
+}
+
+void Simulation::set_dt(double dt) {
+  if (dt == time_->dt()) return;
+  time_->set_dt(dt);
+  system_->step_size_changed();
+}
+
+// Dirichlet data at t_{n+1}: velocities on the nodes' positions at t_{n+1}, prescribed
+// displacements as the velocities that give them through the Newmark relation.
+void Simulation::dirichlet_data(double t_np1) {
+  auto &values = system_->dirichlet_values();
+  bcs_->dirichlet_values(t_np1, ale_->coordinates_np1().data(), values);
+  bcs_->displacement_values(t_np1, disp_values_);
+  for (auto &[i, g] : disp_values_)
+    values.emplace_back(i, time_->velocity_for_displacement(i, g));
+}
+
+StepStats Simulation::step() {
+  const double dt = time_->dt(), t_np1 = time_->time() + dt;
+  const long next = time_->step_index() + 1;
+  const bool steady = scene_.time.steady;
+  // Mesh displacement at t_{n+1} for the velocity U (the solid displacement it implies).
+  auto move_mesh = [&](std::vector<double> &d) {
+    if (!ale_->follows_solid()) return ale_->move(t_np1, nullptr, d);
+    time_->displacement_np1_local(U_, Sloc_);
+    const PetscScalar *sa;
+    FSI_CALL(VecGetArrayRead(Sloc_, &sa));
+    ale_->move(t_np1, sa, d);
+    FSI_CALL(VecRestoreArrayRead(Sloc_, &sa));
+  };
+
+  // Predictor U = V_n; the mesh at n+1 from the predicted solid displacement, at n+alpha_f, and
+  // the mesh velocity; a cell that would invert stops the run before the solve.
+  ale_->begin_step();
+  time_->predict(U_);
+  std::vector<double> d;
+  move_mesh(d);
+  ale_->set_geometry(d, time_->alpha_f(), dt, steady);
+  ale_->check("before", next);
+  dirichlet_data(t_np1);
+
+  StepContext &ctx = system_->context();
+  ctx.is_dirichlet = &bcs_->dirichlet_mask();
+  ale_->fill_context(ctx);
+  time_->fill_context(ctx);
+  time_af_ = ctx.t_af;
+  struct Release { // the history arrays go back whatever happens in the solve
+    const GeneralizedAlpha &t;
+    StepContext &c;
+    ~Release() { t.release_context(c); }
+  } release{*time_, ctx};
+
+  StepStats s;
+  SolveStats r;
+  for (int pass = 0;; ++pass) {
+    r = system_->solve(U_);
+    s.newton += r.newton;
+    s.krylov += r.krylov;
+    if (r.reason < 0 || !ale_->follows_solid() || pass >= ale_->geometry_iterations()) break;
+    // Geometry implicit: move the mesh with the solid displacement just found and solve again
+    // until the mesh stops changing.
+    std::vector<double> d2;
+    move_mesh(d2);
+    s.geometry_iterations = pass + 1;
+    s.geometry_change = ale_->relative_change(d2);
+    if (s.geometry_change <= ale_->geometry_rtol()) break;
+    ale_->set_geometry(d2, time_->alpha_f(), dt, steady);
+    ale_->check("during", next);
+    ale_->fill_context(ctx);
+  }
+  if (r.reason < 0 && r.inverted)
+    throw SolveError("a solid element inverted (det F <= 0) at step " + std::to_string(next) +
+                     " (t = " + std::to_string(t_np1) +
+                     "): the load or time step is too large for this mesh; use more steps");
+  if (r.reason < 0)
+    throw SolveError(std::string("Newton did not converge at step ") + std::to_string(next) +
+                     " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[r.reason] +
+                     "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
+  time_->advance(U_);
+  ale_->accept();
+  return s;
+}
+
+std::vector<std::string> Simulation::monitor_columns() const {
+  auto columns = mon_.columns(), solid_columns = smon_.columns(), wss_columns = wss_.columns();
+  columns.insert(columns.end(), solid_columns.begin(), solid_columns.end());
+  columns.insert(columns.end(), wss_columns.begin(), wss_columns.end());
+  if (ale_->moving())
+    for (auto c : {"mesh_min_jacobian", "mesh_max_skewness", "geometry_iterations"})
+      columns.push_back(c);
+  return columns;
+}
+
+std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
+  wss_.update(*this, dt);
+  std::vector<double> row = mon_.evaluate(*this), sm = smon_.evaluate(*this);
+  row.insert(row.end(), sm.begin(), sm.end());
+  row.insert(row.end(), wss_.values().begin(), wss_.values().end());
+  if (ale_->moving())
+    row.insert(row.end(), {ale_->quality().min_jacobian, ale_->quality().max_skewness,
+                           (double)s.geometry_iterations});
+  if (fields_ && step_index() % out_.fields_every == 0) {
+    Vec loc = space_.create_local(), dloc = space_.create_local();
+    solution_local(loc);
+    displacement_local(dloc);
+    fields_->write(step_index(), time(), loc, coordinates(), dloc);
+    FSI_CALL(VecDestroy(&loc));
+    FSI_CALL(VecDestroy(&dloc));
+    wss_.write_instantaneous(step_index(), time());
+  }
+  return row;
+}
+
+void Simulation::close_outputs() {
+  if (fields_) fields_->close();
+  wss_.close();
+}
+
+RunState Simulation::capture() const {
+  RunState s;
+  s.scene = scene_.tag();
+  s.step = step_index();
+  s.time = time();
+  s.dt = dt();
+  keys_->capture({time_->velocity(), time_->acceleration(), time_->displacement()},
+                 ale_->displacement(), material_X_, s);
+  wss_.save(s);
+  return s;
+}
+
+} // namespace fsi

@@ -1,0 +1,138 @@
+#include "fsi/time/generalized_alpha.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+TimeParams TimeParams::from_options() {
+  TimeParams tp;
+  tp.steady = opt::choice("ts_type", "alpha", {"alpha", "steady"}) == "steady";
+  if (tp.steady) { // load steps over the pseudo-time [0, ts_max_time]
+    tp.t_end = opt::positive("ts_max_time", 1.0);
+    tp.max_steps = opt::integer("ts_max_steps", 1);
+    if (tp.max_steps < 1) throw InputError("option -ts_max_steps must be >= 1");
+    tp.dt = tp.t_end / tp.max_steps;
+    return tp;
+  }
+  tp.dt = opt::positive("ts_dt", 1e-3);
+  tp.rho_inf = opt::real("ts_alpha_radius", 0.5);
+  if (tp.rho_inf < 0 || tp.rho_inf > 1)
+    throw InputError("option -ts_alpha_radius (spectral radius rho_inf) must be in [0, 1]");
+  // -ts_max_steps, when given, wins over the scene's -ts_max_time (handy to shorten a run).
+  const bool by_time = opt::has("ts_max_time");
+  const double t_end = by_time ? opt::positive("ts_max_time", 1.0) : 0.0;
+  if (opt::has("ts_max_steps") || !by_time) {
+    tp.max_steps = opt::integer("ts_max_steps", 10);
+    if (tp.max_steps < 1) throw InputError("option -ts_max_steps must be >= 1");
+    tp.t_end = tp.max_steps * tp.dt;
+  } else {
+    tp.t_end = t_end;
+    tp.max_steps = std::lround(tp.t_end / tp.dt);
+    if (tp.max_steps < 1 || std::fabs(tp.max_steps * tp.dt - tp.t_end) > 1e-9 * tp.t_end)
+      throw InputError("-ts_max_time is not a whole number of steps -ts_dt: adjust one of them");
+  }
+  return tp;
+}
+
+GeneralizedAlpha::GeneralizedAlpha(const Space &space, const TimeParams &tp)
+    : space_(space), tp_(tp), dt_(tp.dt) {
+  if (!tp.steady) {
+    const double r = tp.rho_inf;
+    alpha_m_ = (3 - r) / (2 * (1 + r));
+    alpha_f_ = 1 / (1 + r);
+    gamma_ = 0.5 + alpha_m_ - alpha_f_;
+    beta_ = 0.25 * (1 + alpha_m_ - alpha_f_) * (1 + alpha_m_ - alpha_f_);
+  }
+  Vn_ = space.create_global();
+  FSI_CALL(VecDuplicate(Vn_, &An_));
+  FSI_CALL(VecDuplicate(Vn_, &Dn_));
+  FSI_CALL(VecDuplicate(Vn_, &work_));
+  Vloc_ = space.create_local();
+  FSI_CALL(VecDuplicate(Vloc_, &Aloc_));
+  FSI_CALL(VecDuplicate(Vloc_, &Dloc_));
+}
+
+GeneralizedAlpha::~GeneralizedAlpha() {
+  for (Vec *v : {&Vn_, &An_, &Dn_, &work_, &Vloc_, &Aloc_, &Dloc_})
+    if (*v) VecDestroy(v);
+}
+
+void GeneralizedAlpha::predict(Vec U) {
+  space_.to_local(Vn_, Vloc_);
+  space_.to_local(An_, Aloc_);
+  space_.to_local(Dn_, Dloc_);
+  FSI_CALL(VecCopy(Vn_, U));
+}
+
+void GeneralizedAlpha::fill_context(StepContext &ctx) const {
+  ctx.t_n = t_;
+  ctx.dt = dt_;
+  ctx.t_np1 = t_ + dt_;
+  ctx.steady = tp_.steady;
+  ctx.alpha_m = alpha_m_;
+  ctx.alpha_f = alpha_f_;
+  ctx.gamma = gamma_;
+  ctx.beta = beta_;
+  ctx.t_af = stage_time();
+  FSI_CALL(VecGetArrayRead(Vloc_, &ctx.Vn));
+  FSI_CALL(VecGetArrayRead(Aloc_, &ctx.An));
+  FSI_CALL(VecGetArrayRead(Dloc_, &ctx.Dn));
+}
+
+void GeneralizedAlpha::release_context(StepContext &ctx) const {
+  FSI_CALL(VecRestoreArrayRead(Vloc_, &ctx.Vn));
+  FSI_CALL(VecRestoreArrayRead(Aloc_, &ctx.An));
+  FSI_CALL(VecRestoreArrayRead(Dloc_, &ctx.Dn));
+}
+
+void GeneralizedAlpha::displacement_np1_local(Vec U, Vec loc) {
+  const double dt = dt_;
+  FSI_CALL(VecCopy(Dn_, work_));
+  if (tp_.steady) {
+    FSI_CALL(VecAXPY(work_, dt, U));
+  } else {
+    // u_n + dt v_n + dt^2 [(1/2 - beta) a_n + beta a_{n+1}(U)]
+    const double g = gamma_;
+    FSI_CALL(VecAXPY(work_, dt, Vn_));
+    FSI_CALL(VecAXPY(work_, dt * dt * ((0.5 - beta_) - beta_ * (1 - g) / g), An_));
+    FSI_CALL(VecAXPY(work_, dt * beta_ / g, U));
+    FSI_CALL(VecAXPY(work_, -dt * beta_ / g, Vn_));
+  }
+  space_.to_local(work_, loc);
+}
+
+double GeneralizedAlpha::velocity_for_displacement(PetscInt i, double g) const {
+  const PetscScalar *v, *a, *d;
+  FSI_CALL(VecGetArrayRead(Vloc_, &v));
+  FSI_CALL(VecGetArrayRead(Aloc_, &a));
+  FSI_CALL(VecGetArrayRead(Dloc_, &d));
+  const double vi = PetscRealPart(v[i]), ai = PetscRealPart(a[i]), di = PetscRealPart(d[i]);
+  FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
+  FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
+  FSI_CALL(VecRestoreArrayRead(Dloc_, &d));
+  const double dt = dt_;
+  if (tp_.steady) return (g - di) / dt;
+  return vi + gamma_ / (beta_ * dt) *
+                  (g - di - dt * vi - dt * dt * ((0.5 - beta_) - beta_ * (1 - gamma_) / gamma_) * ai);
+}
+
+void GeneralizedAlpha::advance(Vec U) {
+  const double dt = dt_;
+  if (tp_.steady) {
+    FSI_CALL(VecAXPY(Dn_, dt, U)); // u_{n+1} = u_n + dt v
+  } else {
+    // a_{n+1} = (v_{n+1} - v_n) / (gamma dt) - (1 - gamma) / gamma a_n, then the Newmark update
+    // u_{n+1} = u_n + dt v_n + dt^2 [(1/2 - beta) a_n + beta a_{n+1}].
+    FSI_CALL(VecCopy(An_, work_));
+    FSI_CALL(VecAXPBYPCZ(An_, 1.0 / (gamma_ * dt), -1.0 / (gamma_ * dt), -(1 - gamma_) / gamma_, U,
+                         Vn_));
+    FSI_CALL(VecAXPBYPCZ(Dn_, dt, dt * dt * (0.5 - beta_), 1.0, Vn_, work_));
+    FSI_CALL(VecAXPY(Dn_, dt * dt * beta_, An_));
+  }
+  FSI_CALL(VecCopy(U, Vn_));
+  t_ += dt;
+  ++n_;
+}
+
+} // namespace fsi
