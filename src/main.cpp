@@ -30,12 +30,12 @@ int run(MPI_Comm comm) {
   Mesh mesh;
   load_mesh(comm, mesh);
   std::unique_ptr<RunState> resume;
-  if (!restart.empty()) resume = std::make_unique<RunState>(RunState::read(comm, restart, scene.tag()));
+  if (!restart.empty())
+    resume = std::make_unique<RunState>(RunState::read(comm, restart, scene.tag()));
   auto sim = std::make_unique<Simulation>(mesh, scene, names, resume.get());
   StepControl control = StepControl::from_options(scene.time.dt);
   if (resume) {
-    control.dt = resume->dt;
-    control.easy_run = resume->easy_run;
+    control.resume(resume->dt, resume->easy_run);
     PetscPrintf(comm, "fsi_app: resumed from %s at step %ld, t = %.6e s, dt = %.3e s\n",
                 restart.c_str(), sim->step_index(), sim->time(), control.dt);
   }
@@ -75,47 +75,21 @@ int run(MPI_Comm comm) {
       sim->set_dt(dt);
       const double t0 = MPI_Wtime();
       StepStats s;
-      try {
-        s = sim->step();
-      } catch (DistortionError &) {
-        throw;
-      } catch (SolveError &e) {
+      if (!attempt_step(comm, *sim, control, s)) {
         report.failed_step();
-        if (!control.cut()) {
-          if (!control.enabled) throw;
-          throw SolveError(std::string(e.what()) + " [step size already cut to " +
-                           std::to_string(dt) + " s; -ts_adapt_dt_min " +
-                           std::to_string(control.dt_min) + " s]");
-        }
-        PetscPrintf(comm, "fsi_app: step %ld failed with dt = %.4e s (%s); retrying with dt = %.4e s\n",
-                    sim->step_index() + 1, dt, e.what(), control.dt);
-        continue;
+        continue; // retried with the cut step
       }
-      control.accepted(s.newton);
       const double step_s = MPI_Wtime() - t0;
       if (sim->step_index() == first_step + 1) check_unused_options();
-      const double o0 = MPI_Wtime();
-      FSI_CALL(PetscLogStagePush(Stages::get().output));
-      std::vector<double> values = sim->after_step(dt, s);
-      report.step(s, sim->time(), values);
-      values.insert(values.begin(), {(double)sim->step_index(), sim->time(), (double)s.newton,
-                                     (double)s.krylov, step_s, dt});
-      out.monitor_row(values);
-      FSI_CALL(PetscLogStagePop());
-      report.add_output_time(MPI_Wtime() - o0);
+      report.record(out, *sim, s, dt, step_s); // monitors, monitor.csv row, fields
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);
       if (checkpoint_every > 0 && sim->step_index() % checkpoint_every == 0) write_checkpoint();
-      if (rebuild_every > 0 && sim->step_index() % rebuild_every == 0) {
-        // The whole discretisation rebuilt from the state, as a remesh does on a new mesh.
+      if (rebuild_every > 0 && sim->step_index() % rebuild_every == 0 &&
+          sim->time() < t_end - 1e-9 * scene.time.dt) { // as a remesh does, on the same mesh
         const double r0 = MPI_Wtime();
-        const RunState s = state();
         report.absorb(*sim);
-        sim->close_outputs();
-        sim.reset();
-        names.fields = names.hemo = "rebuild" + std::to_string(report.steps()) + "_";
-        names.fields += "fields", names.hemo += "hemo";
-        sim = std::make_unique<Simulation>(mesh, scene, names, &s);
+        sim = rebuild(std::move(sim), mesh, names, state());
         report.rebuilt(MPI_Wtime() - r0);
       }
       if (const int sig = stop_requested(comm)) {

@@ -2,8 +2,8 @@
 // three components, one constant matrix assembled once on the reference mesh (Dirichlet rows and
 // columns eliminated once); each step is one linear solve with the new boundary data.
 #include "fsi/ale/mesh_motion.hpp"
-#include "fsi/scene/options.hpp"
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "fsi/ale/mesh_motion.hpp"
-#include "fsi/scene/options.hpp"
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -74,8 +74,7 @@ long Boundaries::pressure_dofs_outside_fluid() const {
 }
 
 // Values of one BC's nodes that it owns, at node positions X (vertices, edge midpoints).
-void Boundaries::node_values(const BoundaryCondition &bc, size_t index, double t,
-                             const double *X,
+void Boundaries::node_values(const BoundaryCondition &bc, size_t index, double t, const double *X,
                              std::vector<std::pair<PetscInt, double>> &out) const {
   for (auto &nd : bc.nodes()) {
     double x[3], v[3];
@@ -100,8 +99,7 @@ void Boundaries::dirichlet_values(double t, const double *X,
                                   std::vector<std::pair<PetscInt, double>> &out) const {
   out.clear();
   for (size_t k = 0; k < bcs_.size(); ++k)
-    if (bcs_[k]->data() == BoundaryCondition::Data::velocity)
-      node_values(*bcs_[k], k, t, X, out);
+    if (bcs_[k]->data() == BoundaryCondition::Data::velocity) node_values(*bcs_[k], k, t, X, out);
   for (PetscInt i : outside_fluid_)
     out.emplace_back(i, 0.0);
   if (pin_dof_ >= 0) {

@@ -32,11 +32,10 @@ BoundaryCondition::BoundaryCondition(const BoundarySetup &s, Data data, bool dir
   if (faces) faces_ = s.space.boundary_faces(s.mesh, name_);
 }
 
-void add_fluid_face_traction(const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule,
-                             double beta, double rho,
-                             const std::function<void(const double x[3], const double n[3],
-                                                      double t[3])> &traction,
-                             PetscScalar *F) {
+void add_fluid_face_traction(
+    const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule, double beta, double rho,
+    const std::function<void(const double x[3], const double n[3], double t[3])> &traction,
+    PetscScalar *F) {
   double X[3][3], n[3];
   for (int i = 0; i < 3; ++i)
     for (int d = 0; d < 3; ++d)
@@ -52,7 +51,7 @@ void add_fluid_face_traction(const BoundaryFace &f, const StepContext &ctx, cons
         x[d] += l[i] * X[i][d];
     traction(x, n, tr);
     const double w = rule.weight[q] * area2; // reference triangle measure 1/2
-    if (beta > 0) { // backflow: traction += beta rho/2 min(v.n, 0) v
+    if (beta > 0) {                          // backflow: traction += beta rho/2 min(v.n, 0) v
       double v[3] = {0, 0, 0};
       for (int a = 0; a < 6; ++a)
         for (int d = 0; d < 3; ++d)

@@ -11,8 +11,7 @@ struct TractionExact : BoundaryCondition {
   QuadRule rule = tri_rule(4);
   explicit TractionExact(const BoundarySetup &s)
       : BoundaryCondition(s, Data::velocity, false, true), exact(s.exact), mu(s.mu) {
-    if (!exact)
-      throw InputError("-" + s.prefix() + "type traction_exact needs -exact_solution");
+    if (!exact) throw InputError("-" + s.prefix() + "type traction_exact needs -exact_solution");
   }
   std::string type() const override { return "traction_exact"; }
   bool fixes_pressure_level() const override { return true; }

@@ -32,8 +32,8 @@ void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write
         f.set("dt", dt);
         f.set("easy_run", (double)easy_run);
         f.write("/dofs/keys", dofs.keys, 4);
-        f.write("/dofs/state", dofs.values, dofs.keys.empty() ? 1 : dofs.values.size() /
-                                                                        (dofs.keys.size() / 4));
+        f.write("/dofs/state", dofs.values,
+                dofs.keys.empty() ? 1 : dofs.values.size() / (dofs.keys.size() / 4));
         if (++writes == crash_at_write) raise(SIGKILL); // a run killed while writing (tests)
         std::vector<double> dm, mat;
         for (size_t i = 0; i < vertices.values.size() / 6; ++i)

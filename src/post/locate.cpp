@@ -1,6 +1,6 @@
 #include "fsi/post/locate.hpp"
-#include "fsi/scene/options.hpp"
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/scene/options.hpp"
 
 #include <sstream>
 

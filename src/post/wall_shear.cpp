@@ -323,8 +323,10 @@ Json WallShear::summary() const {
 
 void WallShear::save(RunState &st) const {
   if (!active()) return;
-  for (auto &s : surf_)
+  for (auto &s : surf_) {
     st.hemo[s.name] = gather_sorted(comm_, s.key, s.acc, 3, 4);
+    st.hemo_last_window[s.name] = s.last_window;
+  }
   st.hemo_window = {window_start_, window_time_, (double)window_index_, window_};
 }
 
@@ -342,6 +344,7 @@ void WallShear::load(const RunState &st) {
     if (scatter_by_key(comm_, st.hemo.at(s.name), s.key, s.acc, 3, 4) != 0)
       throw InputError("the restart file's wall-shear faces of '" + s.name +
                        "' do not match this mesh (a checkpoint of another mesh?)");
+    if (st.hemo_last_window.count(s.name)) s.last_window = st.hemo_last_window.at(s.name);
   }
   window_start_ = st.hemo_window[0];
   window_time_ = st.hemo_window[1];

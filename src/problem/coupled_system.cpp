@@ -1,5 +1,6 @@
 #include "fsi/problem/coupled_system.hpp"
 #include "fsi/run/stages.hpp"
+#include "fsi/scene/options.hpp"
 
 namespace fsi {
 
@@ -23,6 +24,8 @@ static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
 }
 
 CoupledSystem::CoupledSystem(const Space &space) : space_(space) {
+  pattern_every_ = opt::integer("sim_pattern_rebuild_every", 0);
+  if (pattern_every_ < 0) throw InputError("option -sim_pattern_rebuild_every must be >= 0");
   F_ = space.create_global();
   Uloc_ = space.create_local();
   FSI_CALL(VecDuplicate(Uloc_, &Floc_));
@@ -76,12 +79,14 @@ void CoupledSystem::build_pattern() {
   for (auto &m : modules_)
     m->pattern_built();
   ++cost_.pattern_builds;
-  if (snes_) FSI_CALL(SNESSetJacobian(snes_, J_, J_, jacobian_cb, this));
 }
 
-void CoupledSystem::setup_solver() {
+// SNES and its preconditioner for the current matrix.  A new pattern gets a new solver: a field
+// split (and a split of its velocity block) is set up for one matrix structure.
+void CoupledSystem::create_solver() {
   MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
-  build_pattern();
+  if (snes_) FSI_CALL(SNESDestroy(&snes_));
+  if (split_) split_->reset();
   FSI_CALL(SNESCreate(comm, &snes_));
   FSI_CALL(SNESSetFunction(snes_, F_, residual_cb, this));
   FSI_CALL(SNESSetJacobian(snes_, J_, J_, jacobian_cb, this));
@@ -100,6 +105,11 @@ void CoupledSystem::setup_solver() {
   }
 }
 
+void CoupledSystem::setup_solver() {
+  build_pattern();
+  create_solver();
+}
+
 void CoupledSystem::step_size_changed() {
   PetscInt lag;
   FSI_CALL(SNESGetLagJacobian(snes_, &lag));
@@ -109,10 +119,13 @@ void CoupledSystem::step_size_changed() {
 }
 
 SolveStats CoupledSystem::solve(Vec U) {
-  bool changed = false;
+  bool changed = pattern_every_ > 0 && ++solves_ % pattern_every_ == 0;
   for (auto &m : modules_)
     changed = changed || m->couplings_changed();
-  if (changed) build_pattern(); // before the solve: SNES and its KSP take the new matrix
+  if (changed) { // before the solve: a new matrix and a solver set up for it
+    build_pattern();
+    create_solver();
+  }
   // Dirichlet values into the initial guess.
   PetscScalar *u;
   FSI_CALL(VecGetArray(U, &u));

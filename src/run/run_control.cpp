@@ -6,6 +6,37 @@
 
 namespace fsi {
 
+bool attempt_step(MPI_Comm comm, Simulation &sim, StepControl &control, StepStats &s) {
+  const double dt = sim.dt();
+  try {
+    s = sim.step();
+  } catch (DistortionError &) {
+    throw;
+  } catch (SolveError &e) {
+    if (!control.cut()) {
+      if (!control.enabled) throw;
+      throw SolveError(std::string(e.what()) + " [step size already cut to " + std::to_string(dt) +
+                       " s; -ts_adapt_dt_min " + std::to_string(control.dt_min) + " s]");
+    }
+    PetscPrintf(comm, "fsi_app: step %ld failed with dt = %.4e s (%s); retrying with dt = %.4e s\n",
+                sim.step_index() + 1, dt, e.what(), control.dt);
+    return false;
+  }
+  control.accepted(s.newton);
+  return true;
+}
+
+std::unique_ptr<Simulation> rebuild(std::unique_ptr<Simulation> old, const Mesh &mesh,
+                                    OutputNames &names, const RunState &state) {
+  const Scene &scene = old->scene();
+  old->close_outputs();
+  old.reset(); // nothing of the old space survives
+  const std::string part = "rebuild" + std::to_string(state.step) + "_";
+  names.fields = part + "fields";
+  names.hemo = part + "hemo";
+  return std::make_unique<Simulation>(mesh, scene, names, &state);
+}
+
 static volatile sig_atomic_t g_stop_signal = 0;
 extern "C" void on_stop_signal(int sig) {
   g_stop_signal = sig;
@@ -45,8 +76,8 @@ void check_unused_options() {
                      " (a typo? see -help; or pass -allow_unused_options)");
 }
 
-void progress(MPI_Comm comm, long step, double t, double t_end, double dt, long newton,
-              long krylov, double step_s, double elapsed, double t0) {
+void progress(MPI_Comm comm, long step, double t, double t_end, double dt, long newton, long krylov,
+              double step_s, double elapsed, double t0) {
   const double done = (t - t0) / (t_end - t0);
   const double eta = done > 0 ? std::max(0.0, elapsed / done * (1 - done)) : 0;
   PetscPrintf(comm,

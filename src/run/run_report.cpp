@@ -1,4 +1,5 @@
 #include "fsi/run/run_report.hpp"
+#include "fsi/run/stages.hpp"
 
 #include <algorithm>
 #include <sys/resource.h>
@@ -38,6 +39,18 @@ void RunReport::step(const StepStats &s, double t, const std::vector<double> &v)
   }
 }
 
+void RunReport::record(Output &out, Simulation &sim, const StepStats &s, double dt, double step_s) {
+  const double o0 = MPI_Wtime();
+  FSI_CALL(PetscLogStagePush(Stages::get().output));
+  std::vector<double> values = sim.after_step(dt, s);
+  step(s, sim.time(), values);
+  values.insert(values.begin(), {(double)sim.step_index(), sim.time(), (double)s.newton,
+                                 (double)s.krylov, step_s, dt});
+  out.monitor_row(values);
+  FSI_CALL(PetscLogStagePop());
+  output_time_ += MPI_Wtime() - o0;
+}
+
 void RunReport::absorb(const Simulation &sim) {
   const CostCounters &c = sim.system().cost();
   jacobians_ += c.jacobians;
@@ -58,7 +71,8 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
   const Space &space = sim.space();
   const double mem_max = max_over_ranks(comm_, peak_memory_mb());
   const double mem_min = -max_over_ranks(comm_, -peak_memory_mb());
-  const double jt = max_over_ranks(comm_, jacobian_time_), rt = max_over_ranks(comm_, residual_time_);
+  const double jt = max_over_ranks(comm_, jacobian_time_),
+               rt = max_over_ranks(comm_, residual_time_);
   // Linear solver time (factorisation / preconditioner setup and Krylov) = Newton time less
   // assembly.
   const double ls = max_over_ranks(comm_, solve_time_ - jacobian_time_ - residual_time_);
@@ -174,10 +188,10 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
               "solver %.2f + mesh motion %.2f + rebuild %.2f + output %.2f + other %.2f; %ld dofs "
               "(velocity %ld, pressure %ld); peak memory %.0f MB/rank; results in %s\n",
               status, steps_, per_step, steps_ ? double(newton_) / steps_ : 0.0, newton_max_,
-              newton_ ? double(krylov_) / newton_ : 0.0, krylov_max_, wall, setup_time_, jt, rt,
-              ls, mesh_motion_time_, rebuild_time_, output_time_,
-              std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ -
-                                rebuild_time_ - output_time_),
+              newton_ ? double(krylov_) / newton_ : 0.0, krylov_max_, wall, setup_time_, jt, rt, ls,
+              mesh_motion_time_, rebuild_time_, output_time_,
+              std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ - rebuild_time_ -
+                                output_time_),
               (long)(space.n_velocity + space.n_pressure), (long)space.n_velocity,
               (long)space.n_pressure, mem_max, out.dir().c_str());
 }

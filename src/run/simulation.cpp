@@ -92,12 +92,12 @@ void Simulation::build_physics(const Mesh &mesh) {
   if (!iface.empty()) {
     if (!fluid_ || !ale_->moving())
       throw InputError("-ale_interface needs a fluid and a mesh motion (-ale_motion laplace)");
-    system_->add_module(std::make_unique<InterfaceMassFlux>(space_, mesh, iface, fluid_->cells(),
-                                                            material_X_));
+    system_->add_module(
+        std::make_unique<InterfaceMassFlux>(space_, mesh, iface, fluid_->cells(), material_X_));
   }
-  bcs_ = std::make_unique<Boundaries>(mesh, space_, exact_.get(), exact_solid_.get(),
-                                      fluid_ ? fluid_->params().mu : 0.0,
-                                      fluid_ ? fluid_->params().rho : 0.0, material_X_, fluid_cells);
+  bcs_ = std::make_unique<Boundaries>(
+      mesh, space_, exact_.get(), exact_solid_.get(), fluid_ ? fluid_->params().mu : 0.0,
+      fluid_ ? fluid_->params().rho : 0.0, material_X_, fluid_cells);
   system_->set_boundaries(bcs_.get());
   system_->set_rigid_body_modes(solid_ != nullptr);
   if (FluidSolidSplit::requested(fluid_ != nullptr, solid_ != nullptr))

@@ -113,8 +113,9 @@ double GeneralizedAlpha::velocity_for_displacement(PetscInt i, double g) const {
   FSI_CALL(VecRestoreArrayRead(Dloc_, &d));
   const double dt = dt_;
   if (tp_.steady) return (g - di) / dt;
-  return vi + gamma_ / (beta_ * dt) *
-                  (g - di - dt * vi - dt * dt * ((0.5 - beta_) - beta_ * (1 - gamma_) / gamma_) * ai);
+  return vi +
+         gamma_ / (beta_ * dt) *
+             (g - di - dt * vi - dt * dt * ((0.5 - beta_) - beta_ * (1 - gamma_) / gamma_) * ai);
 }
 
 void GeneralizedAlpha::advance(Vec U) {

@@ -10,7 +10,8 @@ StepControl StepControl::from_options(double nominal_dt) {
   c.enabled = opt::choice("ts_adapt_type", "cut", {"cut", "none"}) == "cut";
   c.nominal = c.dt = nominal_dt;
   c.factor = opt::positive("ts_adapt_scale_solve_failed", 0.5);
-  if (c.factor >= 1) throw InputError("option -ts_adapt_scale_solve_failed must be in (0, 1), e.g. 0.5");
+  if (c.factor >= 1)
+    throw InputError("option -ts_adapt_scale_solve_failed must be in (0, 1), e.g. 0.5");
   c.dt_min = opt::positive("ts_adapt_dt_min", nominal_dt / 1000);
   if (c.dt_min > nominal_dt)
     throw InputError("option -ts_adapt_dt_min is larger than the time step -ts_dt");

@@ -12,8 +12,8 @@
 //     stiffer, the Jacobian-stiffened variant for large deformation).  Linear solver prefix
 //     -ale_ (default CG + GAMG, rtol 1e-10).
 #pragma once
-#include "fsi/mesh/mesh.hpp"
 #include "fsi/discretization/space.hpp"
+#include "fsi/mesh/mesh.hpp"
 #include <memory>
 #include <string>
 #include <vector>

@@ -23,11 +23,11 @@ namespace fsi {
 struct BoundarySetup {
   const Mesh &mesh;
   const Space &space;
-  const ExactFlow *exact;               // -exact_solution, or null
-  const ExactSolid *exact_solid;        // -exact_displacement, or null
-  double mu, rho;                       // the fluid's (0 without a fluid)
+  const ExactFlow *exact;                // -exact_solution, or null
+  const ExactSolid *exact_solid;         // -exact_displacement, or null
+  double mu, rho;                        // the fluid's (0 without a fluid)
   const std::vector<double> &material_X; // the solid's material reference, 3 per local vertex
-  std::string name;                     // the boundary's physical name
+  std::string name;                      // the boundary's physical name
   std::string prefix() const { return "bc_" + name + "_"; }
 };
 
@@ -47,9 +47,7 @@ public:
   virtual int precedence() const { return prescribed; }
   // Velocity (data velocity, at node position x) or displacement (data displacement, at the
   // node's material position x) at time t; only the fixed components are used.
-  virtual void value(const double x[3], double t, double v[3]) const {
-    v[0] = v[1] = v[2] = 0;
-  }
+  virtual void value(const double x[3], double t, double v[3]) const { v[0] = v[1] = v[2] = 0; }
   // Boundary terms of the momentum residual and their Jacobian.
   virtual void add_residual(const StepContext &ctx, PetscScalar *F) const {}
   virtual void add_jacobian(const StepContext &ctx, Mat J) const {}
@@ -80,10 +78,9 @@ const std::vector<BoundaryType> &boundary_types();
 void read_direction(const std::string &option, double dir[3]); // unit vector from x,y,z
 // Sum -w N_a t(x) over a fluid face on the configuration X_af (t from `traction`), plus the
 // backflow term beta rho/2 min(v.n, 0) v when beta > 0; into F (local).
-void add_fluid_face_traction(const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule,
-                             double beta, double rho,
-                             const std::function<void(const double x[3], const double n[3],
-                                                      double t[3])> &traction,
-                             PetscScalar *F);
+void add_fluid_face_traction(
+    const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule, double beta, double rho,
+    const std::function<void(const double x[3], const double n[3], double t[3])> &traction,
+    PetscScalar *F);
 
 } // namespace fsi

@@ -1,7 +1,7 @@
 // Adds element matrices straight into the AIJ value arrays of the Jacobian at positions found
-// once (the pattern is fixed for the whole run), instead of a MatSetValues search per entry,
-// which was ~80 % of the Jacobian time.  Rows owned by another rank go through MatSetValues;
-// Dirichlet rows are skipped.  Positions are stored as 16-bit offsets within the row.
+// once per matrix pattern (reset() when the pattern is rebuilt), instead of a MatSetValues search
+// per entry, which was ~80 % of the Jacobian time.  Rows owned by another rank go through
+// MatSetValues; Dirichlet rows are skipped.  Positions are stored as 16-bit offsets within the row.
 #pragma once
 #include "fsi/discretization/space.hpp"
 #include <cstdint>
@@ -15,6 +15,7 @@ public:
   void setup(Mat J, const Space &space, const std::vector<PetscInt> &dofs, int n,
              const std::vector<char> &is_dirichlet);
   bool ready() const { return n_ > 0; }
+  void reset() { n_ = 0; }                    // a new matrix: find the positions again
   void begin(Mat J);                          // get the value arrays
   void add(Mat J, size_t e, const double *K); // K: n x n row-major, element dof order
   void end(Mat J);                            // restore the arrays (then assemble J as usual)

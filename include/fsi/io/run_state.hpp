@@ -4,6 +4,7 @@
 // key, as gather_sorted() leaves them) and are empty elsewhere, except the scalars.
 #pragma once
 #include "fsi/io/h5.hpp"
+#include "fsi/io/output.hpp"
 #include <map>
 #include <string>
 #include <vector>
@@ -14,8 +15,8 @@ struct RunState {
   std::string scene; // physics and time scheme: a state only fits a run of the same scene
   long step = 0;
   double time = 0, dt = 0;
-  long easy_run = 0;  // step control's count of easy steps
-  long n_dofs = 0;    // global dof count of the run that captured it
+  long easy_run = 0; // step control's count of easy steps
+  long n_dofs = 0;   // global dof count of the run that captured it
   // Per dof: key (x, y, z of the node in the ALE reference, component; 3 = pressure), values
   // V_n, A_n, D_n (the generalized-alpha history and the solid displacement).
   KeyedItems dofs;
@@ -26,6 +27,7 @@ struct RunState {
   // dt) and the window (start, elapsed, index, length).
   std::map<std::string, KeyedItems> hemo;
   std::vector<double> hemo_window;
+  std::map<std::string, Json> hemo_last_window; // summary of the last closed window (in memory)
 
   // Checkpoint files (rank 0 writes; all ranks call).  write() is atomic: a .partial file,
   // fsync, rename.  read() checks the format and the scene tag.

@@ -10,10 +10,10 @@
 //   direct_insertion (default true; false = MatSetValuesLocal, for checking).
 #pragma once
 #include "fsi/discretization/element_assembler.hpp"
-#include "fsi/mesh/mesh.hpp"
 #include "fsi/discretization/p2tet.hpp"
-#include "fsi/physics/physics_module.hpp"
 #include "fsi/discretization/space.hpp"
+#include "fsi/mesh/mesh.hpp"
+#include "fsi/physics/physics_module.hpp"
 
 namespace fsi {
 
@@ -35,6 +35,7 @@ public:
   void add_residual(const StepContext &ctx, PetscScalar *F) override;
   void add_jacobian(const StepContext &ctx, Mat J) override;
   PetscInt n_cells() const override { return (PetscInt)cells_.size(); }
+  void pattern_built() override { assembler_.reset(); }
   void element_dofs(std::vector<PetscInt> &dofs, int &n) const override {
     dofs = dofs_;
     n = 34;

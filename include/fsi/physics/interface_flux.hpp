@@ -9,10 +9,10 @@
 // round-off: the straight-sided mesh moved by the solid's Newmark displacement otherwise sweeps a
 // volume that differs from the flux of v_{n+1} by O(dt) (0.3-2.5 % on the tube).
 #pragma once
-#include "fsi/mesh/mesh.hpp"
 #include "fsi/discretization/p2tet.hpp"
-#include "fsi/physics/physics_module.hpp"
 #include "fsi/discretization/space.hpp"
+#include "fsi/mesh/mesh.hpp"
+#include "fsi/physics/physics_module.hpp"
 
 namespace fsi {
 

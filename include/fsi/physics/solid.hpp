@@ -9,13 +9,13 @@
 // gravity gx,gy,gz [m/s^2], quad_degree (default 4), direct_insertion, and the material
 // (material.hpp).  A manufactured solution (exact_solid.hpp) adds its body force.
 #pragma once
-#include "fsi/discretization/element_assembler.hpp"
 #include "fsi/analytic/exact_solid.hpp"
-#include "fsi/physics/material.hpp"
-#include "fsi/mesh/mesh.hpp"
+#include "fsi/discretization/element_assembler.hpp"
 #include "fsi/discretization/p2tet.hpp"
-#include "fsi/physics/physics_module.hpp"
 #include "fsi/discretization/space.hpp"
+#include "fsi/mesh/mesh.hpp"
+#include "fsi/physics/material.hpp"
+#include "fsi/physics/physics_module.hpp"
 
 namespace fsi {
 
@@ -42,6 +42,7 @@ public:
   void add_residual(const StepContext &ctx, PetscScalar *F) override;
   void add_jacobian(const StepContext &ctx, Mat J) override;
   PetscInt n_cells() const override { return (PetscInt)cells_.size(); }
+  void pattern_built() override { assembler_.reset(); }
   void element_dofs(std::vector<PetscInt> &dofs, int &n) const override {
     dofs = dofs_;
     n = 30;

@@ -10,7 +10,6 @@
 #pragma once
 #include "fsi/analytic/analytic.hpp"
 #include "fsi/physics/fluid.hpp"
-#include "fsi/physics/fluid.hpp"
 #include <string>
 #include <vector>
 

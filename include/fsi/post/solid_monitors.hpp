@@ -4,9 +4,9 @@
 //   with -exact_displacement:      L2 error of the displacement at t_{n+1} and its relative size.
 #pragma once
 #include "fsi/analytic/exact_solid.hpp"
-#include "fsi/post/locate.hpp"
 #include "fsi/physics/fluid.hpp"
 #include "fsi/physics/solid.hpp"
+#include "fsi/post/locate.hpp"
 
 namespace fsi {
 

@@ -15,7 +15,6 @@
 // |tau_w|) and, with an exact flow, <s>_wss_err_l2 and <s>_wss_exact_l2.
 #pragma once
 #include "fsi/analytic/analytic.hpp"
-#include "fsi/physics/fluid.hpp"
 #include "fsi/io/h5.hpp"
 #include "fsi/io/output.hpp"
 #include "fsi/io/run_state.hpp"

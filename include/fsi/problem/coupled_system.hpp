@@ -5,6 +5,8 @@
 // module says its couplings changed (contact pairs appear and vanish).  The kernels' context
 // (time, history, geometry) is filled by the time integrator and the ALE object before a solve;
 // this object adds the Newton iterate.
+// -sim_pattern_rebuild_every N rebuilds the pattern every N solves whatever the modules say (a
+// check of the rebuild path: the answer must not change).
 #pragma once
 #include "fsi/boundary/boundaries.hpp"
 #include "fsi/physics/physics_module.hpp"
@@ -64,12 +66,14 @@ public:
 
 private:
   void build_pattern();
+  void create_solver();
   const Space &space_;
   std::vector<std::unique_ptr<PhysicsModule>> modules_;
   const Boundaries *bcs_ = nullptr;
   std::unique_ptr<PcdOperators> pcd_;
   std::unique_ptr<FluidSolidSplit> split_;
   bool rigid_modes_ = false;
+  long pattern_every_ = 0, solves_ = 0; // -sim_pattern_rebuild_every N (tests the rebuild path)
   Vec F_ = nullptr, Uloc_ = nullptr, Floc_ = nullptr;
   Mat J_ = nullptr;
   SNES snes_ = nullptr;

@@ -23,6 +23,8 @@ public:
   // An accepted step: its statistics and monitor row (after the dt column).
   void step(const StepStats &s, double t, const std::vector<double> &values);
   void failed_step() { ++failed_; }
+  // After an accepted step: the Simulation's monitors (and fields) and a monitor.csv row.
+  void record(Output &out, Simulation &sim, const StepStats &s, double dt, double step_s);
   // Costs of a Simulation about to be destroyed (a rebuild), or of the last one at the end.
   void absorb(const Simulation &sim);
   void rebuilt(double seconds) { ++rebuilds_, rebuild_time_ += seconds; }

@@ -61,6 +61,7 @@ public:
   StepStats step();
   void set_dt(double dt);
   double dt() const { return time_->dt(); }
+  const Scene &scene() const { return scene_; }
   double time() const { return time_->time(); }
   long step_index() const { return time_->step_index(); }
 

@@ -29,6 +29,7 @@ public:
   // sets, the solid's with the rigid-body modes as near null space.  Once.
   void configure(KSP ksp, Mat J);
   bool configured() const { return done_; }
+  void reset() { done_ = false; } // a new solver: configure again
 
 private:
   const Space &space_;
