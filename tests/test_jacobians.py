@@ -1,8 +1,8 @@
 """Jacobian checks for every kernel: PETSc's -snes_test_jacobian compares our assembled Jacobian
 with a finite-difference one at every Newton iterate, on tiny scenes, one per module or term:
 fluid on a moving mesh, Stokes, each solid material (static and dynamic), the follower pressure,
-the conservative interface and the backflow stabilisation.  Each case runs with two
-finite-difference steps (-snes_test_err 1e-7 and 1e-9) and fails when, at both, some
+the conservative interface and the backflow stabilisation.  Each case runs with the
+finite-difference step -snes_test_err 1e-9, and 1e-7 if needed; it fails when, at both, some
 ||J - J_fd||_F / ||J||_F exceeds TOL: on a right Jacobian the discrepancy is the truncation error
 of the differences and falls with the step (measured: follower pressure 2.8e-4 / 2.8e-6 / 2.8e-8
 at steps 1e-6 / 1e-8 / 1e-10), while a wrong or missing term leaves a discrepancy of its own
@@ -42,13 +42,16 @@ CASES = [
 
 for name, opts, extra in CASES:
     worst = []
-    for step in ("1e-7", "1e-9"):
+    for step in ("1e-9", "1e-7"):  # the second only when the first is above TOL
         # Newton is bounded so that a wrong Jacobian fails fast; the check needs no convergence.
         r = run(opts, np=1, extra=extra + ["-snes_test_jacobian", "-snes_test_err", step,
                                            "-snes_max_it", "8", "-ts_adapt_type", "none"])
         ratios = [float(x) for x in re.findall(r"\|\|J - Jfd\|\|_F/\|\|J\|\|_F = ([0-9.eE+-]+)", r.out)]
         check(r.code in (0, 3) and len(ratios) >= 1, f"{name}: runs and checks its Jacobian")
         worst.append(max(ratios) if ratios else float("inf"))
-    print(f"{name}: worst ||J - Jfd||/||J|| = {worst[0]:.3e} (FD step 1e-7), {worst[1]:.3e} (1e-9)")
+        if worst[-1] <= TOL:
+            break
+    print(f"{name}: worst ||J - Jfd||/||J|| = " +
+          ", ".join(f"{w:.3e} (FD step {s})" for w, s in zip(worst, ("1e-9", "1e-7"))))
     check(min(worst) <= TOL, f"{name}: Jacobian matches finite differences ({min(worst):.2e} <= {TOL:g})")
 finish()

@@ -70,4 +70,15 @@ void add_fluid_face_traction(
       F[f.vdof[a] + d] += Fe[a][d];
 }
 
+void add_face_block(Mat J, const BoundaryFace &f, const std::vector<char> &mask,
+                    const double K[18][18]) {
+  PetscInt rows[18], cols[18];
+  for (int a = 0; a < 6; ++a)
+    for (int i = 0; i < 3; ++i) {
+      cols[3 * a + i] = f.vdof[a] + i;
+      rows[3 * a + i] = mask[f.vdof[a] + i] ? -1 : f.vdof[a] + i;
+    }
+  FSI_CALL(MatSetValuesLocal(J, 18, rows, 18, cols, &K[0][0], ADD_VALUES));
+}
+
 } // namespace fsi

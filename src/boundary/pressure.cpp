@@ -60,13 +60,7 @@ struct Pressure : BoundaryCondition {
                     w * c * N[a] * N[b] * (n[j] * v[i] + (i == j ? vn : 0.0));
       }
       if (!any) continue;
-      PetscInt rows[18], cols[18];
-      for (int a = 0; a < 6; ++a)
-        for (int i = 0; i < 3; ++i) {
-          cols[3 * a + i] = f.vdof[a] + i;
-          rows[3 * a + i] = mask[f.vdof[a] + i] ? -1 : f.vdof[a] + i;
-        }
-      FSI_CALL(MatSetValuesLocal(J, 18, rows, 18, cols, &K[0][0], ADD_VALUES));
+      add_face_block(J, f, mask, K);
     }
   }
 };

@@ -129,6 +129,10 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
     throw InputError(err);
   }
   MPI_Bcast(meta, 5, MPI_DOUBLE, 0, comm);
+  int nw = (int)s.hemo_window.size(); // scalars: on every rank
+  MPI_Bcast(&nw, 1, MPI_INT, 0, comm);
+  s.hemo_window.resize(nw);
+  MPI_Bcast(s.hemo_window.data(), nw, MPI_DOUBLE, 0, comm);
   s.step = std::lround(meta[0]);
   s.time = meta[1];
   s.dt = meta[2];

@@ -341,7 +341,9 @@ void WallShear::load(const RunState &st) {
     MPI_Bcast(&ok, 1, MPI_INT, 0, comm_);
     if (!ok)
       throw InputError("the restart file has no wall-shear data for surface '" + s.name + "'");
-    if (scatter_by_key(comm_, st.hemo.at(s.name), s.key, s.acc, 3, 4) != 0)
+    const auto it = st.hemo.find(s.name); // the data live on rank 0 only
+    if (scatter_by_key(comm_, it != st.hemo.end() ? it->second : KeyedItems(), s.key, s.acc, 3,
+                       4) != 0)
       throw InputError("the restart file's wall-shear faces of '" + s.name +
                        "' do not match this mesh (a checkpoint of another mesh?)");
     if (st.hemo_last_window.count(s.name)) s.last_window = st.hemo_last_window.at(s.name);

@@ -83,4 +83,9 @@ void add_fluid_face_traction(
     const std::function<void(const double x[3], const double n[3], double t[3])> &traction,
     PetscScalar *F);
 
+// Add an 18 x 18 block K (6 face nodes x 3 components, row-major) into J, rows of Dirichlet
+// dofs (mask) skipped.
+void add_face_block(Mat J, const BoundaryFace &f, const std::vector<char> &mask,
+                    const double K[18][18]);
+
 } // namespace fsi
