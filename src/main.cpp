@@ -24,7 +24,8 @@ int run(MPI_Comm comm) {
   const std::string restart = opt::string("restart", "");
   const long checkpoint_every = opt::integer("checkpoint_every", 0);
   const long rebuild_every = opt::integer("sim_rebuild_every", 0);
-  if (checkpoint_every < 0) throw InputError("option -checkpoint_every must be >= 0");
+  if (checkpoint_every < 0 || rebuild_every < 0)
+    throw InputError("options -checkpoint_every and -sim_rebuild_every must be >= 0");
   OutputNames names{out.dir(), restart.empty() ? "fields" : "fields_restart",
                     restart.empty() ? "hemo" : "hemo_restart", opt::integer("out_fields_every", 0)};
   Mesh mesh;

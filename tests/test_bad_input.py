@@ -13,6 +13,8 @@ cases = [
     ("unknown boundary name", ["-bc_names", "inlet,outlet,wal", "-bc_wal_type", "noslip"], "wal"),
     ("boundary without type", ["-bc_names", "inlet,outlet,wall,inlet2"], "inlet2"),
     ("negative viscosity", ["-fluid_mu", "-0.004"], "fluid_mu"),
+    ("negative rebuild interval", ["-sim_rebuild_every", "-1"], "sim_rebuild_every"),
+    ("negative pattern rebuild interval", ["-sim_pattern_rebuild_every", "-2"], "sim_pattern_rebuild_every"),
     ("zero density", ["-fluid_rho", "0"], "fluid_rho"),
     ("unknown option value", ["-fluid_model", "eulerian"], "eulerian"),
     ("unknown physics", ["-physics", "fluid,magnetism"], "magnetism"),

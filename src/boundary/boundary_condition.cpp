@@ -1,6 +1,7 @@
 #include "fsi/boundary/boundary_condition.hpp"
 #include "fsi/scene/options.hpp"
 
+#include <array>
 #include <cmath>
 
 namespace fsi {
@@ -12,6 +13,18 @@ void read_direction(const std::string &name, double dir[3]) {
   if (nrm == 0) throw InputError("option -" + name + " must be non-zero");
   for (int i = 0; i < 3; ++i)
     dir[i] = d[i] / nrm;
+}
+
+std::function<void(const double *, double, double *)> uniform_profile(const std::string &pre) {
+  const double value = opt::real(pre + "value", 0);
+  std::array<double, 3> dir;
+  read_direction(pre + "direction", dir.data());
+  const Waveform wave = Waveform::from_options(pre);
+  return [=](const double *, double t, double *v) {
+    const double scale = value * wave(t);
+    for (int d = 0; d < 3; ++d)
+      v[d] = scale * dir[d];
+  };
 }
 
 // -bc_<name>_components x,y: the velocity components the boundary fixes (default: all for a

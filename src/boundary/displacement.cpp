@@ -18,15 +18,7 @@ struct Displacement : BoundaryCondition {
       profile = [exact](const double *x, double t, double *u) { exact->displacement(x, t, u); };
       return;
     }
-    const double value = opt::real(pre + "value", 0);
-    std::array<double, 3> dir;
-    read_direction(pre + "direction", dir.data());
-    const Waveform wave = Waveform::from_options(pre);
-    profile = [=](const double *, double t, double *u) {
-      const double scale = value * wave(t);
-      for (int d = 0; d < 3; ++d)
-        u[d] = scale * dir[d];
-    };
+    profile = uniform_profile(pre);
   }
   std::string type() const override { return "displacement"; }
   void value(const double x[3], double t, double u[3]) const override { profile(x, t, u); }

@@ -23,18 +23,14 @@ struct Velocity : BoundaryCondition {
       profile = [exact](const double *x, double t, double *v) { exact->velocity(x, t, v); };
       return;
     }
+    if (kind == "uniform") {
+      profile = uniform_profile(pre);
+      return;
+    }
     const double value = opt::real(pre + "value", 0);
     std::array<double, 3> dir;
     read_direction(pre + "direction", dir.data());
     const Waveform wave = Waveform::from_options(pre);
-    if (kind == "uniform") {
-      profile = [=](const double *, double t, double *v) {
-        const double mag = value * wave(t);
-        for (int d = 0; d < 3; ++d)
-          v[d] = mag * dir[d];
-      };
-      return;
-    }
     auto c = opt::reals(pre + "center");
     if (c.size() != 3) throw InputError("option -" + pre + "center needs 3 numbers x,y,z");
     const std::array<double, 3> center = {c[0], c[1], c[2]};

@@ -228,8 +228,7 @@ void Simulation::dirichlet_data(double t_np1) {
   auto &values = system_->dirichlet_values();
   bcs_->dirichlet_values(t_np1, ale_->coordinates_np1().data(), values);
   bcs_->displacement_values(t_np1, disp_values_);
-  for (auto &[i, g] : disp_values_)
-    values.emplace_back(i, time_->velocity_for_displacement(i, g));
+  time_->velocities_for_displacements(disp_values_, values);
 }
 
 StepStats Simulation::step() {

@@ -102,20 +102,26 @@ void GeneralizedAlpha::displacement_np1_local(Vec U, Vec loc) {
   space_.to_local(work_, loc);
 }
 
-double GeneralizedAlpha::velocity_for_displacement(PetscInt i, double g) const {
+void GeneralizedAlpha::velocities_for_displacements(
+    const std::vector<std::pair<PetscInt, double>> &g,
+    std::vector<std::pair<PetscInt, double>> &out) const {
+  if (g.empty()) return;
   const PetscScalar *v, *a, *d;
   FSI_CALL(VecGetArrayRead(Vloc_, &v));
   FSI_CALL(VecGetArrayRead(Aloc_, &a));
   FSI_CALL(VecGetArrayRead(Dloc_, &d));
-  const double vi = PetscRealPart(v[i]), ai = PetscRealPart(a[i]), di = PetscRealPart(d[i]);
+  const double dt = dt_;
+  for (auto &[i, gi] : g) {
+    const double vi = PetscRealPart(v[i]), ai = PetscRealPart(a[i]), di = PetscRealPart(d[i]);
+    out.emplace_back(
+        i, tp_.steady ? (gi - di) / dt
+                      : vi + gamma_ / (beta_ * dt) *
+                                 (gi - di - dt * vi -
+                                  dt * dt * ((0.5 - beta_) - beta_ * (1 - gamma_) / gamma_) * ai));
+  }
   FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
   FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
   FSI_CALL(VecRestoreArrayRead(Dloc_, &d));
-  const double dt = dt_;
-  if (tp_.steady) return (g - di) / dt;
-  return vi +
-         gamma_ / (beta_ * dt) *
-             (g - di - dt * vi - dt * dt * ((0.5 - beta_) - beta_ * (1 - gamma_) / gamma_) * ai);
 }
 
 void GeneralizedAlpha::advance(Vec U) {

@@ -76,6 +76,8 @@ const std::vector<BoundaryType> &boundary_types();
 
 // Helpers shared by the types.
 void read_direction(const std::string &option, double dir[3]); // unit vector from x,y,z
+// value * waveform(t) * direction from -<prefix>value, _direction and the waveform options.
+std::function<void(const double *, double, double *)> uniform_profile(const std::string &prefix);
 // Sum -w N_a t(x) over a fluid face on the configuration X_af (t from `traction`), plus the
 // backflow term beta rho/2 min(v.n, 0) v when beta > 0; into F (local).
 void add_fluid_face_traction(

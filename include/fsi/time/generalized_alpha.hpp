@@ -53,8 +53,9 @@ public:
   void release_context(StepContext &ctx) const;
   // Solid displacement u_{n+1}(U) as a local (ghosted) vector.
   void displacement_np1_local(Vec U, Vec loc);
-  // The velocity value v_{n+1} of local dof i that makes u_{n+1} = g (prescribed displacement).
-  double velocity_for_displacement(PetscInt i, double g) const;
+  // For each (local dof i, displacement g): append (i, v_{n+1}) such that u_{n+1} = g.
+  void velocities_for_displacements(const std::vector<std::pair<PetscInt, double>> &g,
+                                    std::vector<std::pair<PetscInt, double>> &out) const;
   // After a converged step: A_{n+1}, D_{n+1} by Newmark, V_{n+1} = U, t += dt.
   void advance(Vec U);
 
