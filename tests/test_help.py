@@ -24,14 +24,14 @@ for root, _, files in os.walk(os.path.join(SRC, "src")):
     for f in files:
         text = open(os.path.join(root, f)).read()
         read |= set(re.findall(r'opt::[a-z_]+\("([a-z_0-9]+)"', text))
-        read |= {"bc_<b>_" + n for n in re.findall(r'opt::[a-z_]+\((?:pre|prefix) \+ "([a-z_0-9]+)"', text)}
+        read |= {"bc_<b>_" + n for n in re.findall(r'opt::[a-z_]+\((?:pre_?|prefix) \+ "([a-z_0-9]+)"', text)}
         read |= set(re.findall(r'parse_points\("([a-z_0-9]+)"', text))
 # Solver options the app inspects to configure its preconditioners belong to PETSc.
 petsc = {"pc_type", "pc_fieldsplit_schur_precondition"}
 missing = sorted(n for n in read - petsc if n not in documented)
 print(f"{len(read)} option names read by the sources; undocumented: {missing}")
 check(not missing, "every option the sources read is in -help")
-for t in ("noslip", "velocity", "pressure", "traction_exact", "clamped", "displacement",
+for t in ("noslip", "velocity", "flow_rate", "pressure", "traction_exact", "clamped", "displacement",
           "traction", "follower_pressure"):
     check(re.search(rf"^  {t}\s+\((fluid|solid)\)", p.stdout, re.M) is not None,
           f"boundary type '{t}' listed")

@@ -145,21 +145,33 @@ std::unique_ptr<ExactFlow> make_exact_flow(double rho, double mu) {
 
 double Waveform::operator()(double t) const {
   double ramp = (ramp_time > 0 && t < ramp_time) ? 0.5 * (1 - std::cos(M_PI * t / ramp_time)) : 1.0;
-  if (kind == Step) return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
-  if (kind == Pulse) { // sin^2 bump over [0, t_off]: value and slope continuous (second order)
+  switch (kind) {
+  case Step:
+    return t <= t_off + 1e-12 * std::fabs(t_off) ? 1.0 : 0.0;
+  case Pulse: { // sin^2 bump over [0, t_off]: value and slope continuous (second order)
     if (t >= t_off) return 0.0;
     const double s = std::sin(M_PI * t / t_off);
     return s * s;
   }
-  if (kind == Cosine) return ramp * (offset + std::cos(2 * M_PI * t / period));
-  if (kind == Sine) return ramp * (offset + std::sin(2 * M_PI * t / period));
-  if (kind == Linear) return ramp * t / period;
-  return ramp;
+  case Cosine:
+    return ramp * (offset + std::cos(2 * M_PI * t / period));
+  case Sine:
+    return ramp * (offset + std::sin(2 * M_PI * t / period));
+  case Linear:
+    return ramp * t / period;
+  case Table:
+    return ramp * (*table)(t);
+  case Formula:
+    return ramp * formula->scalar(t);
+  default:
+    return ramp;
+  }
 }
 
 Waveform Waveform::from_options(const std::string &prefix) {
   Waveform w;
-  const std::vector<std::string> kinds = {"constant", "step", "pulse", "cosine", "sine", "linear"};
+  const std::vector<std::string> kinds = {"constant", "step",   "pulse", "cosine",
+                                          "sine",     "linear", "table", "expression"};
   const std::string k = opt::choice(prefix + "waveform", "constant", kinds);
   w.kind = Kind(std::find(kinds.begin(), kinds.end(), k) - kinds.begin()); // resolved once
   if (w.kind == Step || w.kind == Pulse) w.t_off = opt::required_positive(prefix + "t_off");
@@ -168,6 +180,13 @@ Waveform Waveform::from_options(const std::string &prefix) {
     w.period = opt::required_positive(prefix + "period");
     w.offset = opt::real(prefix + "offset", 0.0);
   }
+  if (w.kind == Table)
+    w.table = std::make_shared<const WaveTable>(
+        WaveTable::read(opt::required_string(prefix + "table"), prefix + "table",
+                        opt::flag(prefix + "periodic", false)));
+  if (w.kind == Formula)
+    w.formula = std::make_shared<const Expression>(opt::required_string(prefix + "expr"),
+                                                   prefix + "expr", 1);
   w.ramp_time = opt::nonnegative(prefix + "ramp", 0);
   return w;
 }

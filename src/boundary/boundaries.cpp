@@ -98,6 +98,12 @@ void Boundaries::displacement_values(double t,
 void Boundaries::dirichlet_values(double t, const double *X,
                                   std::vector<std::pair<PetscInt, double>> &out) const {
   out.clear();
+  const BoundaryCondition::OtherValues others = [&](int k, const double *x, double *v) {
+    bcs_[k]->value(x, t, v);
+  };
+  for (size_t k = 0; k < bcs_.size(); ++k)
+    if (bcs_[k]->data() == BoundaryCondition::Data::velocity)
+      bcs_[k]->prepare_values(t, X, owner_, (int)k, others);
   for (size_t k = 0; k < bcs_.size(); ++k)
     if (bcs_[k]->data() == BoundaryCondition::Data::velocity) node_values(*bcs_[k], k, t, X, out);
   for (PetscInt i : outside_fluid_)

@@ -6,6 +6,7 @@ namespace fsi {
 
 std::unique_ptr<BoundaryCondition> make_noslip(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_velocity(const BoundarySetup &);
+std::unique_ptr<BoundaryCondition> make_flow_rate(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_pressure(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_traction_exact(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_clamped(const BoundarySetup &);
@@ -17,6 +18,8 @@ const std::vector<BoundaryType> &boundary_types() {
   static const std::vector<BoundaryType> types = {
       {"noslip", "fluid", "v = 0 (a wall)", make_noslip},
       {"velocity", "fluid", "v = profile(x) waveform(t) [m/s]", make_velocity},
+      {"flow_rate", "fluid", "v = s(t) profile(x), flux = value waveform(t) [m^3/s] inwards",
+       make_flow_rate},
       {"pressure", "fluid", "traction -p(t) n [Pa] with backflow stabilisation", make_pressure},
       {"traction_exact", "fluid", "traction of -exact_solution (verification)",
        make_traction_exact},

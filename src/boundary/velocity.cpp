@@ -2,11 +2,15 @@
 //   -bc_<name>_profile uniform|parabolic|exact, -bc_<name>_value [m/s] (mean speed of a
 //   parabolic profile), -bc_<name>_direction x,y,z; parabolic: -bc_<name>_center x,y,z [m],
 //   -bc_<name>_radius [m]: 2 (1 - r^2/R^2) times the value, r measured from the axis through the
-//   centre along the direction; exact: the -exact_solution flow.  Waveform: analytic.hpp.
+//   centre along the direction; exact: the -exact_solution flow; expression: -bc_<name>_expr,
+//   three values in x, y, z, t (expression.hpp) times -bc_<name>_value (default 1) and the
+//   waveform (default 1).  Waveform:
+//   analytic.hpp.
 #include "fsi/boundary/boundary_condition.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
+#include <memory>
 
 namespace fsi {
 namespace {
@@ -16,11 +20,24 @@ struct Velocity : BoundaryCondition {
   explicit Velocity(const BoundarySetup &s) : BoundaryCondition(s, Data::velocity, true, false) {
     const std::string pre = s.prefix();
     const std::string kind =
-        opt::choice(pre + "profile", "uniform", {"uniform", "parabolic", "exact"});
+        opt::choice(pre + "profile", "uniform", {"uniform", "parabolic", "exact", "expression"});
     if (kind == "exact") {
       const ExactFlow *exact = s.exact;
       if (!exact) throw InputError("-" + pre + "profile exact needs -exact_solution");
       profile = [exact](const double *x, double t, double *v) { exact->velocity(x, t, v); };
+      return;
+    }
+    if (kind == "expression") {
+      auto e =
+          std::make_shared<const Expression>(opt::required_string(pre + "expr"), pre + "expr", 3);
+      const double value = opt::real(pre + "value", 1.0);
+      const Waveform wave = Waveform::from_options(pre);
+      profile = [e, wave, value](const double *x, double t, double *v) {
+        e->eval(x, t, v);
+        const double w = value * wave(t);
+        for (int d = 0; d < 3; ++d)
+          v[d] *= w;
+      };
       return;
     }
     if (kind == "uniform") {

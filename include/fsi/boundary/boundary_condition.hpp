@@ -48,6 +48,13 @@ public:
   // Velocity (data velocity, at node position x) or displacement (data displacement, at the
   // node's material position x) at time t; only the fixed components are used.
   virtual void value(const double x[3], double t, double v[3]) const { v[0] = v[1] = v[2] = 0; }
+  // Called on every rank before value() at time t with node positions X (3 per local vertex):
+  // a type whose values depend on an integral over its boundary (a flow rate) computes it here.
+  // setter[dof]: the index of the BC that sets each local dof (-1: none), `self` this one's;
+  // others(k, x, v): the values of BC k at x.
+  using OtherValues = std::function<void(int, const double *, double *)>;
+  virtual void prepare_values(double t, const double *X, const std::vector<int> &setter, int self,
+                              const OtherValues &others) {}
   // Boundary terms of the momentum residual and their Jacobian.
   virtual void add_residual(const StepContext &ctx, PetscScalar *F) const {}
   virtual void add_jacobian(const StepContext &ctx, Mat J) const {}

@@ -1,0 +1,149 @@
+// Aortic valve (paper section 3.2): a rigid aortic root with three thin solid leaflets.
+// SI units [m].  Axis along z, blood flows towards +z; the annulus (leaflet base) is at z = 0.
+// Every size is a parameter (override with gmsh -setnumber NAME VALUE or the scene's
+// -mesh_params NAME=VALUE; -mesh_h sets h):
+//   Ra       annulus = root radius (Labrosse 2006: 12.5-13 mm)
+//   Lin      inlet extension upstream of the annulus (LVOT)
+//   Lout     outlet extension downstream of the commissures (ascending aorta)
+//   t        leaflet thickness (0.4-0.5 mm)
+//   rho_l    radius of the leaflet's spherical mid-surface, centred on the root wall at the
+//            commissure height: > Ra so that the leaflet reaches the axis; rho_l - Ra sets
+//            how far below the commissures the free edges meet the axis
+//   stretch  vertical stretch of that sphere (leaflet height = stretch * rho_l)
+//   gap      gap between neighbouring free edges in this reference (nearly closed) shape
+//   sinus    1: three Valsalva sinus bulges behind the leaflets; 0: a straight tube
+//   sdepth   how far the sinus bulges reach out of the tube; swidth their half-width
+//   h        element size on and near the leaflets; hfar far from them (default 4 h);
+//   hgrow    distance over which the size grows from h to hfar
+//   tlayers  solid elements through the thickness wanted (1 or 2; sizes the leaflet mesh)
+// Leaflet k (k = 0, 1, 2, centre angle 90 + 120 k degrees) is the shell of thickness t about an
+// ellipsoid (semi-axes rho_l, rho_l, stretch rho_l) centred on the wall at the commissure
+// height, cut to its own 120-degree sector (less gap/2 from each dividing plane), to the lower
+// half and to the tube.  It meets the wall along a curve that rises from the leaflet base
+// (z = 0) to the commissures; the three free edges meet near the axis with a gap.
+SetFactory("OpenCASCADE");
+If (!Exists(Ra)) Ra = 0.0125; EndIf
+If (!Exists(Lin)) Lin = 0.015; EndIf
+If (!Exists(Lout)) Lout = 0.05; EndIf
+If (!Exists(t)) t = 0.00045; EndIf
+If (!Exists(rho_l)) rho_l = 0.0135; EndIf
+If (!Exists(stretch)) stretch = 1.25; EndIf
+If (!Exists(gap)) gap = 0.0008; EndIf
+If (!Exists(sinus)) sinus = 1; EndIf
+If (!Exists(sdepth)) sdepth = 0.004; EndIf
+If (!Exists(swidth)) swidth = 0.009; EndIf
+If (!Exists(h)) h = 0.001; EndIf
+If (!Exists(hfar)) hfar = 4 * h; EndIf
+If (!Exists(hgrow)) hgrow = 0.008; EndIf
+If (!Exists(tlayers)) tlayers = 1; EndIf
+
+zc = stretch * rho_l;         // commissure height: the ellipsoids' centre height
+Ltot = Lin + zc + Lout;
+big = 4 * Ra;
+
+// Fluid: the tube and the sinus bulges.
+Cylinder(1) = {0, 0, -Lin, 0, 0, Ltot, Ra};
+fluid() = {1};
+If (sinus)
+  // Each bulge: an ellipsoid (sdepth radially, swidth along the wall, 0.9 zc vertically)
+  // centred on the wall at the commissure height, inside its leaflet's inner ellipsoid so that it
+  // never reaches the leaflet's attachment curve.
+  For k In {0:2}
+    th = Pi / 2 + 2 * Pi * k / 3;
+    Sphere(10 + k) = {0, 0, 0, 1};
+    Dilate {{0, 0, 0}, {sdepth, swidth, 0.9 * zc}} { Volume{10 + k}; }
+    Translate {Ra, 0, zc} { Volume{10 + k}; }
+    Rotate {{0, 0, 1}, {0, 0, 0}, th} { Volume{10 + k}; }
+  EndFor
+  fluid() = BooleanUnion{ Volume{1}; Delete; }{ Volume{10, 11, 12}; Delete; };
+EndIf
+
+// Leaflets.
+leaf() = {};
+For k In {0:2}
+  th = Pi / 2 + 2 * Pi * k / 3;
+  ro = rho_l + t / 2;
+  ri = rho_l - t / 2;
+  Sphere(20 + 10 * k) = {0, 0, 0, 1};
+  Dilate {{0, 0, 0}, {ro, ro, stretch * rho_l + t / 2}} { Volume{20 + 10 * k}; }
+  Sphere(21 + 10 * k) = {0, 0, 0, 1};
+  Dilate {{0, 0, 0}, {ri, ri, stretch * rho_l - t / 2}} { Volume{21 + 10 * k}; }
+  shell() = BooleanDifference{ Volume{20 + 10 * k}; Delete; }{ Volume{21 + 10 * k}; Delete; };
+  Translate {Ra, 0, zc} { Volume{shell()}; }
+  Rotate {{0, 0, 1}, {0, 0, 0}, th} { Volume{shell()}; }
+  // The sector: two half-spaces bounded by the dividing planes at th +- 60 degrees, each moved
+  // gap/2 into the sector, and the lower half (z < zc).
+  Box(22 + 10 * k) = {gap / 2, -big, -Lin, big, 2 * big, zc + Lin};
+  Rotate {{0, 0, 1}, {0, 0, 0}, th + Pi / 3 - Pi / 2} { Volume{22 + 10 * k}; }
+  Box(23 + 10 * k) = {gap / 2, -big, -Lin, big, 2 * big, zc + Lin};
+  Rotate {{0, 0, 1}, {0, 0, 0}, th - Pi / 3 + Pi / 2} { Volume{23 + 10 * k}; }
+  Cylinder(24 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + zc, Ra};
+  sector() = BooleanIntersection{ Volume{22 + 10 * k}; Delete; }{ Volume{23 + 10 * k}; Delete; };
+  sector() = BooleanIntersection{ Volume{sector()}; Delete; }{ Volume{24 + 10 * k}; Delete; };
+  leaf() += BooleanIntersection{ Volume{shell()}; Delete; }{ Volume{sector()}; Delete; };
+EndFor
+
+// Conforming fluid and leaflets.
+all() = BooleanFragments{ Volume{fluid()}; Delete; }{ Volume{leaf()}; Delete; };
+eps = 1e-3 * Ra; // selection tolerance [m]
+// The fragments' tags: the leaflets lie within z in [0, zc], the fluid spans the whole length.
+leaf() = Volume In BoundingBox{-big, -big, -Lin / 2, big, big, zc + Lout / 2};
+fl() = Volume{:};
+fl() -= leaf();
+Physical Volume("fluid", 1) = fl();
+Physical Volume("leaflets", 2) = leaf();
+
+lbound() = Abs(Boundary{ Volume{leaf()}; });
+fbound() = Abs(Boundary{ Volume{fl()}; });
+inl() = Surface In BoundingBox{-big, -big, -Lin - eps, big, big, -Lin + eps};
+outl() = Surface In BoundingBox{-big, -big, zc + Lout - eps, big, big, zc + Lout + eps};
+// Leaflet faces shared with the fluid are the interface; the others lie on the root wall.
+iface() = {};
+attach() = {};
+For i In {0:#lbound() - 1}
+  s = lbound(i);
+  shared = 0;
+  For j In {0:#fbound() - 1}
+    If (fbound(j) == s)
+      shared = 1;
+    EndIf
+  EndFor
+  If (shared)
+    iface() += s;
+  Else
+    attach() += s;
+  EndIf
+EndFor
+wall() = fbound();
+wall() -= iface();
+wall() -= inl();
+wall() -= outl();
+Physical Surface("inlet", 11) = inl();
+Physical Surface("outlet", 12) = outl();
+Physical Surface("root_wall", 13) = wall();
+Physical Surface("attachment", 14) = attach();
+Physical Surface("interface", 15) = iface();
+
+// Sizes: h on and near the leaflets, growing to hfar over hgrow.
+hleaf = h;
+If (tlayers >= 2)
+  hleaf = Min(h, t / 2 * 1.5);
+EndIf
+Field[1] = Distance;
+Field[1].SurfacesList = {iface()};
+Field[1].NumPointsPerCurve = 50;
+Field[2] = Threshold;
+Field[2].InField = 1;
+Field[2].SizeMin = hleaf;
+Field[2].SizeMax = hfar;
+Field[2].DistMin = 0.1 * hgrow;
+Field[2].DistMax = hgrow;
+Background Field = 2;
+Mesh.CharacteristicLengthExtendFromBoundary = 0;
+Mesh.CharacteristicLengthFromPoints = 0;
+Mesh.CharacteristicLengthFromCurvature = 0;
+Mesh.CharacteristicLengthMin = 0;
+Mesh.CharacteristicLengthMax = hfar;
+Mesh.Optimize = 1;
+Mesh.OptimizeThreshold = 0.6; // optimise every tet of quality (gamma) below 0.6, not 0.3
+
