@@ -32,6 +32,7 @@ If (!Exists(gap)) gap = 0.0008; EndIf
 If (!Exists(sinus)) sinus = 1; EndIf
 If (!Exists(sdepth)) sdepth = 0.004; EndIf
 If (!Exists(swidth)) swidth = 0.009; EndIf
+If (!Exists(sheight)) sheight = 0.75; EndIf
 If (!Exists(h)) h = 0.001; EndIf
 If (!Exists(hfar)) hfar = 4 * h; EndIf
 If (!Exists(hgrow)) hgrow = 0.008; EndIf
@@ -43,6 +44,9 @@ big = 4 * Ra;
 
 // Fluid: the tube and the sinus bulges.
 Cylinder(1) = {0, 0, -Lin, 0, 0, Ltot, Ra};
+// OpenCASCADE's cylinders have a seam line at angle 0: turn it to a commissure (30 degrees),
+// where it crosses no leaflet attachment (a seam through an attachment leaves slivers there).
+Rotate {{0, 0, 1}, {0, 0, 0}, Pi / 6} { Volume{1}; }
 fluid() = {1};
 If (sinus)
   // Each bulge: an ellipsoid (sdepth radially, swidth along the wall, 0.9 zc vertically)
@@ -51,7 +55,7 @@ If (sinus)
   For k In {0:2}
     th = Pi / 2 + 2 * Pi * k / 3;
     Sphere(10 + k) = {0, 0, 0, 1};
-    Dilate {{0, 0, 0}, {sdepth, swidth, 0.9 * zc}} { Volume{10 + k}; }
+    Dilate {{0, 0, 0}, {sdepth, swidth, sheight * zc}} { Volume{10 + k}; }
     Translate {Ra, 0, zc} { Volume{10 + k}; }
     Rotate {{0, 0, 1}, {0, 0, 0}, th} { Volume{10 + k}; }
   EndFor
@@ -78,6 +82,7 @@ For k In {0:2}
   Box(23 + 10 * k) = {gap / 2, -big, -Lin, big, 2 * big, zc + Lin};
   Rotate {{0, 0, 1}, {0, 0, 0}, th - Pi / 3 + Pi / 2} { Volume{23 + 10 * k}; }
   Cylinder(24 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + zc, Ra};
+  Rotate {{0, 0, 1}, {0, 0, 0}, Pi / 6} { Volume{24 + 10 * k}; }
   sector() = BooleanIntersection{ Volume{22 + 10 * k}; Delete; }{ Volume{23 + 10 * k}; Delete; };
   sector() = BooleanIntersection{ Volume{sector()}; Delete; }{ Volume{24 + 10 * k}; Delete; };
   leaf() += BooleanIntersection{ Volume{shell()}; Delete; }{ Volume{sector()}; Delete; };

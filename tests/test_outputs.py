@@ -23,7 +23,7 @@ ok = all(path in h5 and tuple(int(x) for x in dims.split()) == h5[path].shape fo
 check(len(refs) > 0 and ok, f"all {len(refs)} XDMF data items exist in fields.h5 with their shapes")
 times = [float(t) for t in re.findall(r'<Time Value="([^"]+)"', xdmf)]
 check(times == [0.01, 0.02], f"XDMF time steps {times}")
-X = h5["geometry/vertices"][:] + h5["fields/mesh_displacement_000004"][:]
+X = h5["geometry/nodes"][:] + h5["fields/mesh_displacement_000004"][:]
 v = h5["fields/velocity_000004"][:]
 a, d, nu, t = np.pi / 4, np.pi / 2, 0.2, 0.02
 def comp(x, y, z):

@@ -58,7 +58,7 @@ std::unique_ptr<MeshMotion> make_mesh_motion(const Mesh &mesh, const Space &spac
 
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
                          const std::vector<double> &X) {
-  double jmin = 1e300, smax = 0;
+  double jmin = 1e300, smax = 0, at[3] = {0, 0, 0};
   for (PetscInt k : cells) {
     double P[4][3], P0[4][3];
     space.cell_points(k, X.data(), P);
@@ -72,7 +72,11 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
     };
     double a[3], b[3], c[3], a0[3], b0[3], c0[3];
     const double Vs = volume(P, a, b, c), V0 = volume(P0, a0, b0, c0), V = std::fabs(Vs);
-    jmin = std::min(jmin, Vs / V0); // the vertex order may be negatively oriented: compare signs
+    if (Vs / V0 < jmin) { // the vertex order may be negatively oriented: compare signs
+      jmin = Vs / V0;
+      for (int d = 0; d < 3; ++d)
+        at[d] = 0.25 * (P[0][d] + P[1][d] + P[2][d] + P[3][d]);
+    }
     if (Vs / V0 <= 0) {
       smax = 1;
       continue;
@@ -93,7 +97,15 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
   }
   MeshQuality q;
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
-  MPI_Allreduce(&jmin, &q.min_jacobian, 1, MPI_DOUBLE, MPI_MIN, comm);
+  struct {
+    double value;
+    int rank;
+  } mine = {jmin, 0}, least;
+  MPI_Comm_rank(comm, &mine.rank);
+  MPI_Allreduce(&mine, &least, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
+  q.min_jacobian = least.value;
+  std::copy(at, at + 3, q.where);
+  MPI_Bcast(q.where, 3, MPI_DOUBLE, least.rank, comm);
   MPI_Allreduce(&smax, &q.max_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
   return q;
 }

@@ -10,56 +10,78 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir, const Field
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
   PetscSection ls;
   FSI_CALL(DMGetLocalSection(space.dm, &ls));
-  // A vertex is owned where its pressure dof is; global vertex ids follow rank order.
-  std::vector<PetscInt> pdof(space.n_vertices());
-  for (PetscInt v = space.vStart; v < space.vEnd; ++v)
-    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &pdof[v - space.vStart]));
-  for (PetscInt v = 0; v < space.n_vertices(); ++v)
-    if (space.owned(pdof[v])) owned_vertices_.push_back(v);
-  nv_owned_ = (PetscInt)owned_vertices_.size();
-  PetscInt vstart = 0;
-  MPI_Scan(&nv_owned_, &vstart, 1, MPIU_INT, MPI_SUM, comm);
-  vstart -= nv_owned_;
-  MPI_Allreduce(&nv_owned_, &nv_global_, 1, MPIU_INT, MPI_SUM, comm);
+  // A node is owned where its velocity dofs are; global ids follow rank order, vertices first.
+  pdof_.resize(space.n_vertices());
+  for (PetscInt v = space.vStart; v < space.vEnd; ++v) {
+    PetscInt o;
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 0, &o));
+    FSI_CALL(PetscSectionGetFieldOffset(ls, v, 1, &pdof_[v - space.vStart]));
+    if (space.owned(o)) owned_.push_back({(int)(v - space.vStart), -1, o});
+  }
+  for (PetscInt e = space.eStart; e < space.eEnd; ++e) {
+    PetscInt o, n;
+    FSI_CALL(PetscSectionGetFieldDof(ls, e, 0, &n));
+    if (n == 0) continue;
+    FSI_CALL(PetscSectionGetFieldOffset(ls, e, 0, &o));
+    if (!space.owned(o)) continue;
+    const PetscInt *cone;
+    FSI_CALL(DMPlexGetCone(space.dm, e, &cone));
+    owned_.push_back({(int)(cone[0] - space.vStart), (int)(cone[1] - space.vStart), o});
+  }
+  n_owned_ = (PetscInt)owned_.size();
+  PetscInt start = 0;
+  MPI_Scan(&n_owned_, &start, 1, MPIU_INT, MPI_SUM, comm);
+  start -= n_owned_;
+  MPI_Allreduce(&n_owned_, &n_global_, 1, MPIU_INT, MPI_SUM, comm);
   PetscInt nc = space.n_cells();
   MPI_Allreduce(&nc, &ncells_global_, 1, MPIU_INT, MPI_SUM, comm);
-  // Global id of every local vertex (ghosts from their owner) through a dof-sized vector.
+  // Global id of every local node (ghosts from their owner) through a dof-sized vector.
   Vec g = space.create_global(), l = space.create_local();
   PetscScalar *ga;
   FSI_CALL(VecGetArray(g, &ga));
-  for (PetscInt i = 0; i < nv_owned_; ++i)
-    ga[space.local_to_global[pdof[owned_vertices_[i]]] - space.rstart] = vstart + i;
+  for (PetscInt i = 0; i < n_owned_; ++i)
+    ga[space.local_to_global[owned_[i].vdof] - space.rstart] = start + i;
   FSI_CALL(VecRestoreArray(g, &ga));
   space.to_local(g, l);
   const PetscScalar *la;
   FSI_CALL(VecGetArrayRead(l, &la));
-  std::vector<PetscInt> vid(space.n_vertices());
-  for (PetscInt v = 0; v < space.n_vertices(); ++v)
-    vid[v] = (PetscInt)PetscRealPart(la[pdof[v]]);
-  FSI_CALL(VecRestoreArrayRead(l, &la));
-  FSI_CALL(VecDestroy(&g));
-  FSI_CALL(VecDestroy(&l));
 
   FSI_CALL(
       PetscViewerHDF5Open(comm, (dir + "/" + set.base + ".h5").c_str(), FILE_MODE_WRITE, &h5_));
+  // Our P2 node order (4 vertices, then edges TET_EDGE) to VTK's quadratic tetrahedron
+  // (4 vertices, then edges 01, 12, 02, 03, 13, 23).
+  static const int VTK_FROM_OURS[10] = {0, 1, 2, 3, 4, 7, 5, 6, 8, 9};
   Vec cells;
-  FSI_CALL(VecCreateMPI(comm, 4 * nc, PETSC_DETERMINE, &cells));
-  FSI_CALL(VecSetBlockSize(cells, 4));
+  FSI_CALL(VecCreateMPI(comm, 10 * nc, PETSC_DETERMINE, &cells));
+  FSI_CALL(VecSetBlockSize(cells, 10));
   PetscScalar *ca;
   FSI_CALL(VecGetArray(cells, &ca));
   for (PetscInt k = 0; k < nc; ++k)
-    for (int i = 0; i < 4; ++i)
-      ca[4 * k + i] = vid[space.cell_vertex[4 * k + i]];
+    for (int i = 0; i < 10; ++i)
+      ca[10 * k + i] = PetscRealPart(la[space.cell_vdof[10 * k + VTK_FROM_OURS[i]]]);
   FSI_CALL(VecRestoreArray(cells, &ca));
+  FSI_CALL(VecRestoreArrayRead(l, &la));
+  FSI_CALL(VecDestroy(&g));
+  FSI_CALL(VecDestroy(&l));
   write_and_destroy("/topology", "cells", cells);
-  Vec xv = vertex_vec(3);
+  if (!set.region.empty()) {
+    Vec reg;
+    FSI_CALL(VecCreateMPI(comm, nc, PETSC_DETERMINE, &reg));
+    PetscScalar *ra;
+    FSI_CALL(VecGetArray(reg, &ra));
+    for (PetscInt k = 0; k < nc; ++k)
+      ra[k] = set.region[k];
+    FSI_CALL(VecRestoreArray(reg, &ra));
+    write_and_destroy("/topology", "region", reg);
+  }
+  Vec xv = node_vec(3);
   PetscScalar *xa;
   FSI_CALL(VecGetArray(xv, &xa));
-  for (PetscInt i = 0; i < nv_owned_; ++i)
+  for (PetscInt i = 0; i < n_owned_; ++i)
     for (int d = 0; d < 3; ++d)
-      xa[3 * i + d] = space.X[3 * owned_vertices_[i] + d];
+      xa[3 * i + d] = node_value(space.X.data(), owned_[i], d);
   FSI_CALL(VecRestoreArray(xv, &xa));
-  write_and_destroy("/geometry", "vertices", xv);
+  write_and_destroy("/geometry", "nodes", xv);
 }
 
 FieldWriter::~FieldWriter() {
@@ -74,10 +96,15 @@ void FieldWriter::write_and_destroy(const char *group, const std::string &name, 
   FSI_CALL(VecDestroy(&v));
 }
 
-Vec FieldWriter::vertex_vec(int bs) const {
+// A per-vertex quantity (3 per local vertex) at a node: linear along the edges.
+double FieldWriter::node_value(const double *Xv, const Node &n, int d) {
+  return n.b < 0 ? Xv[3 * n.a + d] : 0.5 * (Xv[3 * n.a + d] + Xv[3 * n.b + d]);
+}
+
+Vec FieldWriter::node_vec(int bs) const {
   Vec v;
   FSI_CALL(
-      VecCreateMPI(PetscObjectComm((PetscObject)space_.dm), bs * nv_owned_, PETSC_DETERMINE, &v));
+      VecCreateMPI(PetscObjectComm((PetscObject)space_.dm), bs * n_owned_, PETSC_DETERMINE, &v));
   FSI_CALL(VecSetBlockSize(v, bs));
   return v;
 }
@@ -92,28 +119,23 @@ std::vector<std::pair<std::string, int>> FieldWriter::names() const {
 
 void FieldWriter::write(long step, double t, Vec U_local, const std::vector<double> &X,
                         Vec D_local) {
-  PetscSection ls;
-  FSI_CALL(DMGetLocalSection(space_.dm, &ls));
   const PetscScalar *u, *dsol = nullptr;
   FSI_CALL(VecGetArrayRead(U_local, &u));
   if (set_.displacement) FSI_CALL(VecGetArrayRead(D_local, &dsol));
-  Vec vel = vertex_vec(3), p = vertex_vec(1), disp = vertex_vec(3), sd = vertex_vec(3);
+  Vec vel = node_vec(3), p = node_vec(1), disp = node_vec(3), sd = node_vec(3);
   PetscScalar *va, *pa, *da, *sa;
   FSI_CALL(VecGetArray(vel, &va));
   FSI_CALL(VecGetArray(p, &pa));
   FSI_CALL(VecGetArray(disp, &da));
   FSI_CALL(VecGetArray(sd, &sa));
-  for (PetscInt i = 0; i < nv_owned_; ++i) {
-    const PetscInt v = owned_vertices_[i];
-    PetscInt o0, o1;
-    FSI_CALL(PetscSectionGetFieldOffset(ls, v + space_.vStart, 0, &o0));
-    FSI_CALL(PetscSectionGetFieldOffset(ls, v + space_.vStart, 1, &o1));
+  for (PetscInt i = 0; i < n_owned_; ++i) {
+    const Node &n = owned_[i];
     for (int d = 0; d < 3; ++d) {
-      va[3 * i + d] = u[o0 + d];
-      da[3 * i + d] = X[3 * v + d] - space_.X[3 * v + d];
-      sa[3 * i + d] = dsol ? dsol[o0 + d] : 0.0;
+      va[3 * i + d] = u[n.vdof + d];
+      da[3 * i + d] = node_value(X.data(), n, d) - node_value(space_.X.data(), n, d);
+      sa[3 * i + d] = dsol ? dsol[n.vdof + d] : 0.0;
     }
-    pa[i] = u[o1];
+    pa[i] = n.b < 0 ? u[pdof_[n.a]] : 0.5 * (u[pdof_[n.a]] + u[pdof_[n.b]]);
   }
   FSI_CALL(VecRestoreArray(vel, &va));
   FSI_CALL(VecRestoreArray(p, &pa));
@@ -147,7 +169,7 @@ void FieldWriter::close() {
   if (rank != 0) return;
   const std::string path = dir_ + "/" + set_.base + ".xdmf", tmp = path + ".tmp";
   std::ofstream f(tmp);
-  const auto nv = std::to_string(nv_global_), nc = std::to_string(ncells_global_);
+  const auto nv = std::to_string(n_global_), nc = std::to_string(ncells_global_);
   f << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
     << "  <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
   for (auto &[step, t] : steps_) {
@@ -155,17 +177,21 @@ void FieldWriter::close() {
     std::snprintf(tag, sizeof tag, "_%06ld", step);
     f << "   <Grid Name=\"step" << tag << "\" GridType=\"Uniform\">\n"
       << "    <Time Value=\"" << t << "\"/>\n"
-      << "    <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << nc << "\">\n"
+      << "    <Topology TopologyType=\"Tetrahedron_10\" NumberOfElements=\"" << nc << "\">\n"
       << "     <DataItem Dimensions=\"" << nc
-      << " 4\" NumberType=\"Float\" Precision=\"8\" "
+      << " 10\" NumberType=\"Float\" Precision=\"8\" "
          "Format=\"HDF\">"
       << set_.base << ".h5:/topology/cells</DataItem>\n"
       << "    </Topology>\n    <Geometry GeometryType=\"XYZ\">\n"
       << "     <DataItem Dimensions=\"" << nv
       << " 3\" NumberType=\"Float\" Precision=\"8\" "
          "Format=\"HDF\">"
-      << set_.base << ".h5:/geometry/vertices</DataItem>\n"
+      << set_.base << ".h5:/geometry/nodes</DataItem>\n"
       << "    </Geometry>\n";
+    if (!set_.region.empty())
+      f << "    <Attribute Name=\"region\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+        << "     <DataItem Dimensions=\"" << nc << "\" NumberType=\"Float\" Precision=\"8\" "
+        << "Format=\"HDF\">" << set_.base << ".h5:/topology/region</DataItem>\n    </Attribute>\n";
     for (auto &[name, nc_] : names())
       f << "    <Attribute Name=\"" << name << "\" AttributeType=\""
         << (nc_ == 3 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n     <DataItem Dimensions=\""

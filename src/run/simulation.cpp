@@ -107,6 +107,7 @@ void Simulation::build_physics(const Mesh &mesh) {
   system_->setup_solver();
   mon_.setup(mesh, space_, fluid_, exact_.get());
   smon_.setup(space_, solid_, exact_solid_.get());
+  valve_.setup(space_, fluid_, solid_);
   wss_.setup(mesh, space_, fluid_, exact_.get(), out_.dir, scene_.time.t_end, out_.hemo);
   if (out_.fields_every > 0) {
     FieldSet set;
@@ -114,6 +115,11 @@ void Simulation::build_physics(const Mesh &mesh) {
     set.mesh_displacement = ale_->moving();
     set.displacement = solid_ != nullptr;
     set.base = out_.fields;
+    if (solid_ && fluid_) { // a cell attribute to tell the leaflets (1) from the fluid (0)
+      set.region.assign(space_.n_cells(), 0);
+      for (PetscInt k : solid_->cells())
+        set.region[k] = 1;
+    }
     fields_ = std::make_unique<FieldWriter>(space_, out_.dir, set);
   }
 }
@@ -300,9 +306,12 @@ StepStats Simulation::step() {
 std::vector<std::string> Simulation::monitor_columns() const {
   auto columns = mon_.columns(), solid_columns = smon_.columns(), wss_columns = wss_.columns();
   columns.insert(columns.end(), solid_columns.begin(), solid_columns.end());
+  const auto valve_columns = valve_.columns();
+  columns.insert(columns.end(), valve_columns.begin(), valve_columns.end());
   columns.insert(columns.end(), wss_columns.begin(), wss_columns.end());
   if (ale_->moving())
-    for (auto c : {"mesh_min_jacobian", "mesh_max_skewness", "geometry_iterations"})
+    for (auto c : {"mesh_min_jacobian", "mesh_max_skewness", "mesh_min_jacobian_x",
+                   "mesh_min_jacobian_y", "mesh_min_jacobian_z", "geometry_iterations"})
       columns.push_back(c);
   return columns;
 }
@@ -311,10 +320,13 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   wss_.update(*this, dt);
   std::vector<double> row = mon_.evaluate(*this), sm = smon_.evaluate(*this);
   row.insert(row.end(), sm.begin(), sm.end());
+  const auto vm = valve_.evaluate(*this);
+  row.insert(row.end(), vm.begin(), vm.end());
   row.insert(row.end(), wss_.values().begin(), wss_.values().end());
   if (ale_->moving())
     row.insert(row.end(), {ale_->quality().min_jacobian, ale_->quality().max_skewness,
-                           (double)s.geometry_iterations});
+                           ale_->quality().where[0], ale_->quality().where[1],
+                           ale_->quality().where[2], (double)s.geometry_iterations});
   if (fields_ && step_index() % out_.fields_every == 0) {
     Vec loc = space_.create_local(), dloc = space_.create_local();
     solution_local(loc);

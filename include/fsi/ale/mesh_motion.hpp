@@ -41,6 +41,8 @@ std::unique_ptr<MeshMotion> make_mesh_motion(const Mesh &mesh, const Space &spac
 // (R the circumradius; 0 regular, 1 degenerate), over all ranks.
 struct MeshQuality {
   double min_jacobian = 1, max_skewness = 0;
+  double where[3] = {0, 0, 0}; // centre of the cell with the smallest volume ratio (the one the
+                               // motion crushes most)
 };
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
                          const std::vector<double> &X);

@@ -1,9 +1,13 @@
 // Fields for ParaView: fields.h5 (parallel HDF5 through PETSc's viewer) and fields.xdmf (written
 // by rank 0 when the run ends, so a killed run never leaves an XDMF that looks complete).
-// Vertex values on the straight-sided mesh, only the fields of the physics that ran: velocity
-// (P2 vertex dofs) always, pressure with a fluid, the mesh displacement when the mesh moves, the
-// solid displacement with a solid.  Datasets: /geometry/vertices, /topology/cells,
-// /fields/<name>_<step>.
+// Values at the P2 nodes (vertices, then edge midpoints) on quadratic tetrahedra (XDMF
+// Tetrahedron_10, VTK node order), so that ParaView shows the computed P2 fields, not only their
+// vertex values; only the fields of the physics that ran: velocity always, pressure with a fluid
+// (P1, linear along the edges), the mesh displacement when the mesh moves (P1 motion), the solid
+// displacement with a solid.  Geometry: the reference positions (warp by mesh_displacement for
+// the current ones).  Datasets: /geometry/nodes, /topology/cells (10 per cell),
+// /fields/<name>_<step>; with both a fluid and a solid, the cell attribute region
+// (/topology/region: 1 solid, 0 fluid).
 #pragma once
 #include "fsi/discretization/space.hpp"
 #include <string>
@@ -14,6 +18,8 @@ namespace fsi {
 struct FieldSet {
   bool pressure = true, mesh_displacement = false, displacement = false;
   std::string base = "fields"; // file names base.h5, base.xdmf ("fields_restart" on restart)
+  std::vector<int> region;     // per local cell: 1 solid, 0 fluid (written as /topology/region
+                               // when not empty)
 };
 
 class FieldWriter {
@@ -26,15 +32,22 @@ public:
   void close(); // writes fields.xdmf
 
 private:
-  Vec vertex_vec(int bs) const;
+  Vec node_vec(int bs) const;
   std::vector<std::pair<std::string, int>> names() const;
   void write_and_destroy(const char *group, const std::string &name, Vec &v);
   const Space &space_;
   std::string dir_;
   FieldSet set_;
   PetscViewer h5_ = nullptr;
-  PetscInt nv_owned_ = 0, nv_global_ = 0, ncells_global_ = 0;
-  std::vector<PetscInt> owned_vertices_; // local vertex indices owned here, in global id order
+  // A P2 node written by this rank: vertex (b < 0) or edge midpoint between local vertices a, b.
+  struct Node {
+    int a, b;
+    PetscInt vdof; // its first local velocity dof
+  };
+  PetscInt n_owned_ = 0, n_global_ = 0, ncells_global_ = 0;
+  std::vector<Node> owned_;    // nodes owned here, in global id order
+  std::vector<PetscInt> pdof_; // pressure dof per local vertex
+  static double node_value(const double *Xv, const Node &n, int d);
   std::vector<std::pair<long, double>> steps_;
 };
 

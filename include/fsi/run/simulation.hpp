@@ -18,6 +18,7 @@
 #include "fsi/physics/solid.hpp"
 #include "fsi/post/monitors.hpp"
 #include "fsi/post/solid_monitors.hpp"
+#include "fsi/post/valve_monitors.hpp"
 #include "fsi/post/wall_shear.hpp"
 #include "fsi/problem/coupled_system.hpp"
 #include "fsi/time/generalized_alpha.hpp"
@@ -113,6 +114,7 @@ private:
   std::unique_ptr<Checkpoint> keys_;
   Monitors mon_;
   SolidMonitors smon_;
+  ValveMonitors valve_;
   WallShear wss_;
   std::unique_ptr<FieldWriter> fields_;
   Vec U_ = nullptr, Sloc_ = nullptr;

@@ -1,0 +1,42 @@
+"""valve_history.png from a valve run's monitor.csv (called by scripts/valve_pictures)."""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+d = sys.argv[1]
+rows = list(csv.DictReader(open(os.path.join(d, "monitor.csv"))))
+if not rows:
+    sys.exit("valve_history: monitor.csv has no rows")
+col = lambda c, s=1.0: [s * float(r[c]) for r in rows]
+t = col("time", 1000)
+fig, ax = plt.subplots(4, 1, figsize=(7, 9), sharex=True)
+ax[0].plot(t, col("inlet_flux", -6e4), label="inlet")
+if "outlet_flux" in rows[0]:
+    ax[0].plot(t, col("outlet_flux", 6e4), "--", label="outlet")
+ax[0].set_ylabel("flow rate [L/min]")
+ax[0].legend()
+ax[1].plot(t, col("valve_dp", 1 / 133.322))
+ax[1].set_ylabel("pressure drop [mmHg]")
+ax[2].plot(t, col("valve_goa", 1e4), label="orifice area")
+ax[2].set_ylabel("orifice area [cm$^2$]")
+ax2 = ax[2].twinx()
+ax2.plot(t, col("valve_goa_ratio", 100), alpha=0)
+ax2.set_ylabel("% of annulus")
+ax[3].plot(t, col("valve_leaflet_umax", 1000), label="leaflet max |u|")
+if "solid_probe0_uz" in rows[0]:
+    ax[3].plot(t, col("solid_probe0_uz", 1000), label="free edge u_z")
+ax[3].set_ylabel("displacement [mm]")
+ax[3].legend()
+ax[3].set_xlabel("time [ms]")
+for a in ax:
+    a.grid(True, alpha=0.3)
+fig.suptitle(os.path.basename(os.path.normpath(d)))
+fig.tight_layout()
+out = os.path.join(d, "valve_history.png")
+fig.savefig(out, dpi=110)
+print("wrote", out)

@@ -1,0 +1,132 @@
+"""Rendered pictures of a valve run (pvpython; called by scripts/valve_pictures RESULTS_DIR
+[TIME ...]): leaflets coloured by displacement, velocity magnitude on the mid-plane x = 0, wall
+shear stress on the leaflets, at the fields' times nearest to each TIME [s]."""
+import os
+import re
+import sys
+
+import h5py
+import numpy as np
+from paraview import vtk
+from paraview.simple import (ColorBy, CreateRenderView, GetColorTransferFunction, GetDisplayProperties,
+                             Hide, Render, SaveScreenshot, Show, Slice, Threshold, TrivialProducer,
+                             WarpByVector, Xdmf3ReaderS)
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+
+d = sys.argv[1]
+reader = Xdmf3ReaderS(FileName=[os.path.join(d, "fields.xdmf")])
+times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
+wanted = [float(t) for t in sys.argv[2:]] or [times[-1]]
+if "region" not in reader.CellData.keys():
+    sys.exit("valve_render: fields.xdmf has no region attribute (a fluid-solid run is needed)")
+
+
+def view(size=(1000, 800)):
+    v = CreateRenderView()
+    v.ViewSize = list(size)
+    v.Background = [1, 1, 1]
+    v.OrientationAxesVisibility = 1
+    try:
+        v.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    return v
+
+
+def region(lo, hi):
+    th = Threshold(Input=reader, Scalars=["CELLS", "region"])
+    th.LowerThreshold, th.UpperThreshold = lo, hi
+    return th
+
+
+def colour(src, v, array, title, vmin=None, vmax=None):
+    disp = Show(src, v)
+    ColorBy(disp, ("POINTS", array, "Magnitude") if array != "wss_magnitude" else ("CELLS", array))
+    lut = GetColorTransferFunction(array)
+    lut.ApplyPreset("Viridis (matplotlib)", True)
+    disp.RescaleTransferFunctionToDataRange(False, True)
+    if vmin is not None:
+        lut.RescaleTransferFunction(vmin, vmax)
+    disp.SetScalarBarVisibility(v, True)
+    try:
+        from paraview.simple import GetScalarBar
+        sb = GetScalarBar(lut, v)
+        sb.Title, sb.ComponentTitle = title, ""
+        sb.TitleColor = sb.LabelColor = [0, 0, 0]
+    except Exception:
+        pass
+    return disp
+
+
+def camera(v, pos, up, focal=(0, 0, 0.008), scale=0.016):
+    v.CameraPosition, v.CameraFocalPoint, v.CameraViewUp = list(pos), list(focal), list(up)
+    v.CameraParallelProjection = 1
+    v.CameraParallelScale = scale
+
+
+leaflets = WarpByVector(Input=region(0.5, 1.5), Vectors=["POINTS", "displacement"])
+fluid = WarpByVector(Input=region(-0.5, 0.5), Vectors=["POINTS", "mesh_displacement"])
+plane = Slice(Input=fluid)
+plane.SliceType = "Plane"
+plane.SliceType.Origin = [0, 0, 0]
+plane.SliceType.Normal = [1, 0, 0]
+
+# Instantaneous wall shear (hemo.xdmf lists the steps; hemo.h5 holds them).
+wss_steps = []
+hx = os.path.join(d, "hemo.xdmf")
+if os.path.exists(hx):
+    wss_steps = [(int(n), float(t)) for n, t in
+                 re.findall(r'<Grid Name="interface_(\d+)"><Time Value="([^"]+)"/>', open(hx).read())]
+
+for want in wanted:
+    t = min(times, key=lambda x: abs(x - want))
+    tag = f"{1000 * t:.1f}ms"
+    for src in (reader, leaflets, fluid, plane):
+        src.UpdatePipeline(t)
+
+    for name, pos, up in (("top", (0, 0, 0.2), (0, 1, 0)), ("side", (0.2, -0.12, 0.06), (0, 0, 1))):
+        v = view()
+        v.ViewTime = t
+        colour(leaflets, v, "displacement", "|u| [m]")
+        camera(v, pos, up)
+        Render(v)
+        SaveScreenshot(os.path.join(d, f"leaflets_{name}_{tag}.png"), v, ImageResolution=[1000, 800])
+
+    v = view((1100, 800))
+    v.ViewTime = t
+    colour(plane, v, "velocity", "|v| [m/s]")
+    leaf = Show(leaflets, v)
+    ColorBy(leaf, None)
+    leaf.DiffuseColor = [0.6, 0.6, 0.6]
+    camera(v, (0.2, 0, 0.012), (0, 0, 1), focal=(0, 0, 0.012), scale=0.03)
+    Render(v)
+    SaveScreenshot(os.path.join(d, f"velocity_{tag}.png"), v, ImageResolution=[1100, 800])
+
+    if wss_steps:
+        n, tw = min(wss_steps, key=lambda s: abs(s[1] - t))
+        with h5py.File(os.path.join(d, "hemo.h5"), "r") as h:
+            g = h[f"interface/step_{n}"]
+            pts = np.asarray(g["points"]).reshape(-1, 3)
+            mag = np.asarray(g["wss_magnitude"]).ravel()
+        poly = vtk.vtkPolyData()
+        p = vtk.vtkPoints()
+        p.SetData(numpy_to_vtk(np.ascontiguousarray(pts), deep=True))
+        poly.SetPoints(p)
+        nt = len(mag)
+        conn = np.hstack([np.full((nt, 1), 3), np.arange(3 * nt).reshape(-1, 3)]).ravel()
+        cells = vtk.vtkCellArray()
+        cells.SetCells(nt, numpy_to_vtkIdTypeArray(conn.astype(np.int64), deep=True))
+        poly.SetPolys(cells)
+        arr = numpy_to_vtk(np.ascontiguousarray(mag), deep=True)
+        arr.SetName("wss_magnitude")
+        poly.GetCellData().AddArray(arr)
+        tp = TrivialProducer()
+        tp.GetClientSideObject().SetOutput(poly)
+        for name, pos, up in (("top", (0, 0, 0.2), (0, 1, 0)), ("bottom", (0, 0, -0.2), (0, 1, 0))):
+            v = view()
+            colour(tp, v, "wss_magnitude", "|WSS| [Pa]")
+            camera(v, pos, up)
+            Render(v)
+            SaveScreenshot(os.path.join(d, f"wss_{name}_{1000 * tw:.1f}ms.png"), v,
+                           ImageResolution=[1000, 800])
+    print(f"valve_render: pictures at t = {t:.4f} s in {d}")

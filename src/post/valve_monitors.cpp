@@ -1,0 +1,205 @@
+#include "fsi/post/valve_monitors.hpp"
+#include "fsi/boundary/boundary_condition.hpp"
+#include "fsi/run/simulation.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fsi {
+
+void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const SolidModule *solid) {
+  active_ = opt::has("valve_annulus_radius");
+  if (!active_) return;
+  space_ = &space;
+  solid_ = solid;
+  comm_ = PetscObjectComm((PetscObject)space.dm);
+  if (!fluid || !solid)
+    throw InputError("-valve_annulus_radius needs a fluid and a solid (-physics fluid,solid)");
+  R_ = opt::required_positive("valve_annulus_radius");
+  auto c = opt::reals("valve_center");
+  if (!c.empty() && c.size() != 3) throw InputError("option -valve_center needs 3 numbers x,y,z");
+  if (c.size() == 3) c_ = {c[0], c[1], c[2]};
+  axis_ = {0, 0, 1};
+  if (opt::has("valve_axis")) read_direction("valve_axis", axis_.data());
+  // An orthonormal frame (e1, e2, axis) of the annulus plane.
+  const std::array<double, 3> t =
+      std::fabs(axis_[0]) < 0.9 ? std::array<double, 3>{1, 0, 0} : std::array<double, 3>{0, 1, 0};
+  double dot = t[0] * axis_[0] + t[1] * axis_[1] + t[2] * axis_[2], n = 0;
+  for (int d = 0; d < 3; ++d)
+    e1_[d] = t[d] - dot * axis_[d], n += e1_[d] * e1_[d];
+  for (int d = 0; d < 3; ++d)
+    e1_[d] /= std::sqrt(n);
+  e2_ = {axis_[1] * e1_[2] - axis_[2] * e1_[1], axis_[2] * e1_[0] - axis_[0] * e1_[2],
+         axis_[0] * e1_[1] - axis_[1] * e1_[0]};
+  pixels_ = (int)opt::integer("valve_goa_pixels", 400);
+  if (pixels_ < 10) throw InputError("option -valve_goa_pixels must be at least 10");
+
+  auto planes = opt::reals("valve_dp_planes");
+  if (planes.size() != 2 || !(planes[0] < 0 && planes[1] > 0))
+    throw InputError("option -valve_dp_planes needs two axial positions a,b [m] from the annulus "
+                     "centre, upstream a < 0 and downstream b > 0");
+  const double rp = opt::positive("valve_dp_radius", 0.8 * R_);
+  // Disc samples: rings of equal width, 6 i points on ring i, each with its ring area share.
+  const int rings = 6;
+  for (int side = 0; side < 2; ++side) {
+    auto &plane = side == 0 ? up_ : down_;
+    for (int i = 0; i < rings; ++i) {
+      const double r0 = rp * i / rings, r1 = rp * (i + 1) / rings, r = 0.5 * (r0 + r1);
+      const int m = i == 0 ? 1 : 6 * i;
+      for (int j = 0; j < m; ++j) {
+        const double a = 2 * M_PI * (j + 0.5 * (i % 2)) / m, rr = i == 0 ? 0 : r;
+        double x[3];
+        for (int d = 0; d < 3; ++d)
+          x[d] =
+              c_[d] + planes[side] * axis_[d] + rr * (std::cos(a) * e1_[d] + std::sin(a) * e2_[d]);
+        Sample s;
+        s.at = locate_point(space, fluid->cells(), x);
+        if (s.at.owner < 0)
+          throw InputError("-valve_dp_planes: the point " + std::to_string(x[0]) + "," +
+                           std::to_string(x[1]) + "," + std::to_string(x[2]) +
+                           " lies outside the fluid: check the planes and -valve_dp_radius");
+        s.weight = M_PI * (r1 * r1 - r0 * r0) / m;
+        plane.push_back(s);
+      }
+    }
+  }
+}
+
+std::vector<std::string> ValveMonitors::columns() const {
+  if (!active_) return {};
+  return {"valve_p_up",         "valve_p_down",        "valve_dp", "valve_goa", "valve_goa_ratio",
+          "valve_leaflet_umax", "valve_leaflet_vm_max"};
+}
+
+double ValveMonitors::plane_mean_pressure(const std::vector<Sample> &plane,
+                                          const PetscScalar *u) const {
+  int rank;
+  MPI_Comm_rank(comm_, &rank);
+  double acc[2] = {0, 0}, glob[2];
+  for (auto &s : plane) {
+    if (s.at.owner != rank) continue;
+    double p = 0;
+    for (int i = 0; i < 4; ++i)
+      p += s.at.lambda[i] * PetscRealPart(u[space_->cell_pdof[4 * s.at.cell + i]]);
+    acc[0] += s.weight * p;
+    acc[1] += s.weight;
+  }
+  MPI_Allreduce(acc, glob, 2, MPI_DOUBLE, MPI_SUM, comm_);
+  return glob[0] / glob[1];
+}
+
+// Raster of the annulus disc; a pixel is covered when its centre lies in the projection of a
+// face of a deformed leaflet cell (the union of a tetrahedron's face projections is its shadow).
+double ValveMonitors::orifice_area(const std::vector<double> &x) const {
+  const int n = pixels_;
+  const double hpix = 2 * R_ / n;
+  std::vector<char> covered(size_t(n) * n, 0), all(size_t(n) * n);
+  auto project = [&](const double *p, double q[2]) {
+    double r[3];
+    for (int d = 0; d < 3; ++d)
+      r[d] = p[d] - c_[d];
+    q[0] = r[0] * e1_[0] + r[1] * e1_[1] + r[2] * e1_[2];
+    q[1] = r[0] * e2_[0] + r[1] * e2_[1] + r[2] * e2_[2];
+  };
+  static const int FACE[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
+  const auto &cells = solid_->cells();
+  for (size_t c = 0; c < cells.size(); ++c) {
+    double q[4][2];
+    for (int i = 0; i < 4; ++i)
+      project(&x[12 * c + 3 * i], q[i]);
+    for (auto &f : FACE) {
+      const double *a = q[f[0]], *b = q[f[1]], *cc = q[f[2]];
+      const double det = (b[0] - a[0]) * (cc[1] - a[1]) - (b[1] - a[1]) * (cc[0] - a[0]);
+      if (std::fabs(det) < 1e-30) continue;
+      const double lo0 = std::min({a[0], b[0], cc[0]}), hi0 = std::max({a[0], b[0], cc[0]});
+      const double lo1 = std::min({a[1], b[1], cc[1]}), hi1 = std::max({a[1], b[1], cc[1]});
+      const int i0 = std::max(0, (int)std::floor((lo0 + R_) / hpix - 0.5));
+      const int i1 = std::min(n - 1, (int)std::ceil((hi0 + R_) / hpix - 0.5));
+      const int j0 = std::max(0, (int)std::floor((lo1 + R_) / hpix - 0.5));
+      const int j1 = std::min(n - 1, (int)std::ceil((hi1 + R_) / hpix - 0.5));
+      for (int i = i0; i <= i1; ++i)
+        for (int j = j0; j <= j1; ++j) {
+          const double px = -R_ + (i + 0.5) * hpix, py = -R_ + (j + 0.5) * hpix;
+          const double l1 = ((px - a[0]) * (cc[1] - a[1]) - (py - a[1]) * (cc[0] - a[0])) / det;
+          const double l2 = ((b[0] - a[0]) * (py - a[1]) - (b[1] - a[1]) * (px - a[0])) / det;
+          if (l1 >= 0 && l2 >= 0 && l1 + l2 <= 1) covered[size_t(i) * n + j] = 1;
+        }
+    }
+  }
+  MPI_Allreduce(covered.data(), all.data(), n * n, MPI_CHAR, MPI_MAX, comm_);
+  long open = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double px = -R_ + (i + 0.5) * hpix, py = -R_ + (j + 0.5) * hpix;
+      if (px * px + py * py < R_ * R_ && !all[size_t(i) * n + j]) ++open;
+    }
+  return open * hpix * hpix;
+}
+
+std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
+  if (!active_) return {};
+  Vec uloc = space_->create_local(), dloc = space_->create_local();
+  pb.solution_local(uloc);
+  pb.displacement_local(dloc);
+  const PetscScalar *u, *D;
+  FSI_CALL(VecGetArrayRead(uloc, &u));
+  FSI_CALL(VecGetArrayRead(dloc, &D));
+  const double pu = plane_mean_pressure(up_, u), pd = plane_mean_pressure(down_, u);
+
+  // Deformed leaflet vertices, the largest displacement and the largest von Mises stress (at the
+  // cell centres: P2 displacement, linear stress).
+  const auto &cells = solid_->cells();
+  const auto &X0 = solid_->material_X();
+  std::vector<double> x(12 * cells.size());
+  double umax = 0, vm = 0;
+  for (size_t c = 0; c < cells.size(); ++c) {
+    const PetscInt k = cells[c];
+    double X[4][3], uc[10][3];
+    space_->cell_points(k, X0.data(), X);
+    for (int a = 0; a < 10; ++a)
+      for (int d = 0; d < 3; ++d)
+        uc[a][d] = PetscRealPart(D[space_->cell_vdof[10 * k + a] + d]);
+    for (int i = 0; i < 4; ++i) {
+      double m = 0;
+      for (int d = 0; d < 3; ++d)
+        x[12 * c + 3 * i + d] = X[i][d] + uc[i][d], m += uc[i][d] * uc[i][d];
+      umax = std::max(umax, std::sqrt(m));
+    }
+    TetGeometry g;
+    g.set(X);
+    const double l[4] = {0.25, 0.25, 0.25, 0.25};
+    double N[10], dN[10][3], F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P[3][3];
+    p2_tet(l, g.grad_lambda, N, dN);
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          F[i][j] += uc[a][i] * dN[a][j];
+    solid_->material().stress(F, P);
+    const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
+                     F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
+                     F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);
+    double s[3][3] = {}; // Cauchy: P F^T / J
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        for (int m = 0; m < 3; ++m)
+          s[i][j] += P[i][m] * F[j][m];
+        s[i][j] /= J;
+      }
+    const double v =
+        std::sqrt(0.5 * (std::pow(s[0][0] - s[1][1], 2) + std::pow(s[1][1] - s[2][2], 2) +
+                         std::pow(s[2][2] - s[0][0], 2)) +
+                  3 * (s[0][1] * s[0][1] + s[1][2] * s[1][2] + s[0][2] * s[0][2]));
+    vm = std::max(vm, v);
+  }
+  double loc[2] = {umax, vm}, glob[2];
+  MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_MAX, comm_);
+  const double goa = orifice_area(x);
+  FSI_CALL(VecRestoreArrayRead(uloc, &u));
+  FSI_CALL(VecRestoreArrayRead(dloc, &D));
+  FSI_CALL(VecDestroy(&uloc));
+  FSI_CALL(VecDestroy(&dloc));
+  return {pu, pd, pu - pd, goa, goa / (M_PI * R_ * R_), glob[0], glob[1]};
+}
+
+} // namespace fsi
