@@ -17,6 +17,7 @@ d = sys.argv[1]
 reader = Xdmf3ReaderS(FileName=[os.path.join(d, "fields.xdmf")])
 times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
 wanted = [float(t) for t in sys.argv[2:]] or [times[-1]]
+reader.UpdatePipeline(times[0])  # the arrays are known after a first update
 if "region" not in reader.CellData.keys():
     sys.exit("valve_render: fields.xdmf has no region attribute (a fluid-solid run is needed)")
 
@@ -41,12 +42,14 @@ def region(lo, hi):
 
 def colour(src, v, array, title, vmin=None, vmax=None):
     disp = Show(src, v)
+    disp.Ambient, disp.Diffuse = 0.35, 0.75  # thin curved shells: light them from every side
     ColorBy(disp, ("POINTS", array, "Magnitude") if array != "wss_magnitude" else ("CELLS", array))
     lut = GetColorTransferFunction(array)
     lut.ApplyPreset("Viridis (matplotlib)", True)
-    disp.RescaleTransferFunctionToDataRange(False, True)
-    if vmin is not None:
-        lut.RescaleTransferFunction(vmin, vmax)
+    if vmin is None:  # the range of what is shown, not of the whole file
+        info = src.PointData[array] if array != "wss_magnitude" else src.CellData[array]
+        vmin, vmax = 0.0, max(info.GetRange(-1)[1], 1e-30)
+    lut.RescaleTransferFunction(vmin, vmax)
     disp.SetScalarBarVisibility(v, True)
     try:
         from paraview.simple import GetScalarBar
@@ -122,9 +125,12 @@ for want in wanted:
         poly.GetCellData().AddArray(arr)
         tp = TrivialProducer()
         tp.GetClientSideObject().SetOutput(poly)
+        tp.UpdatePipeline()
         for name, pos, up in (("top", (0, 0, 0.2), (0, 1, 0)), ("bottom", (0, 0, -0.2), (0, 1, 0))):
             v = view()
-            colour(tp, v, "wss_magnitude", "|WSS| [Pa]")
+            # the 99th percentile: a few edge faces would otherwise take the whole scale
+            colour(tp, v, "wss_magnitude", "|WSS| [Pa] (top 1% saturated)", 0.0,
+                   float(np.percentile(mag, 99)))
             camera(v, pos, up)
             Render(v)
             SaveScreenshot(os.path.join(d, f"wss_{name}_{1000 * tw:.1f}ms.png"), v,

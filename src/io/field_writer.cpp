@@ -65,6 +65,12 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir, const Field
   FSI_CALL(VecDestroy(&l));
   write_and_destroy("/topology", "cells", cells);
   if (!set.region.empty()) {
+    // The solid displacement means nothing at fluid nodes: written as zero there.
+    solid_node_.assign(space.n_local, 0);
+    for (PetscInt k = 0; k < nc; ++k)
+      if (set.region[k] == 1)
+        for (int a = 0; a < 10; ++a)
+          solid_node_[space.cell_vdof[10 * k + a]] = 1;
     Vec reg;
     FSI_CALL(VecCreateMPI(comm, nc, PETSC_DETERMINE, &reg));
     PetscScalar *ra;
@@ -133,7 +139,7 @@ void FieldWriter::write(long step, double t, Vec U_local, const std::vector<doub
     for (int d = 0; d < 3; ++d) {
       va[3 * i + d] = u[n.vdof + d];
       da[3 * i + d] = node_value(X.data(), n, d) - node_value(space_.X.data(), n, d);
-      sa[3 * i + d] = dsol ? dsol[n.vdof + d] : 0.0;
+      sa[3 * i + d] = dsol && (solid_node_.empty() || solid_node_[n.vdof]) ? dsol[n.vdof + d] : 0.0;
     }
     pa[i] = n.b < 0 ? u[pdof_[n.a]] : 0.5 * (u[pdof_[n.a]] + u[pdof_[n.b]]);
   }

@@ -4,9 +4,9 @@
 // Tetrahedron_10, VTK node order), so that ParaView shows the computed P2 fields, not only their
 // vertex values; only the fields of the physics that ran: velocity always, pressure with a fluid
 // (P1, linear along the edges), the mesh displacement when the mesh moves (P1 motion), the solid
-// displacement with a solid.  Geometry: the reference positions (warp by mesh_displacement for
-// the current ones).  Datasets: /geometry/nodes, /topology/cells (10 per cell),
-// /fields/<name>_<step>; with both a fluid and a solid, the cell attribute region
+// displacement with a solid (zero at fluid nodes).  Geometry: the reference positions (warp by
+// mesh_displacement for the current ones).  Datasets: /geometry/nodes, /topology/cells (10 per
+// cell), /fields/<name>_<step>; with both a fluid and a solid, the cell attribute region
 // (/topology/region: 1 solid, 0 fluid).
 #pragma once
 #include "fsi/discretization/space.hpp"
@@ -45,8 +45,9 @@ private:
     PetscInt vdof; // its first local velocity dof
   };
   PetscInt n_owned_ = 0, n_global_ = 0, ncells_global_ = 0;
-  std::vector<Node> owned_;    // nodes owned here, in global id order
-  std::vector<PetscInt> pdof_; // pressure dof per local vertex
+  std::vector<Node> owned_;      // nodes owned here, in global id order
+  std::vector<PetscInt> pdof_;   // pressure dof per local vertex
+  std::vector<char> solid_node_; // per local dof: in a solid cell (with a region attribute)
   static double node_value(const double *Xv, const Node &n, int d);
   std::vector<std::pair<long, double>> steps_;
 };
