@@ -133,13 +133,13 @@ struct FlowRate : BoundaryCondition {
         for (int d = 0; d < 3; ++d)
           x[d] = 0.5 * (X[3 * a + d] + X[3 * b + d]);
         shape_(x, t, v);
-        bool other_done = false;
+        int got = -1; // the boundary whose values are in o
         for (int d = 0; d < 3; ++d) {
           const int k = setter[f.vdof[3 + m] + d];
           if (k == self) {
             loc[0] -= w * v[d] * n[d]; // inflow positive
           } else if (k >= 0) {
-            if (!other_done) others(k, x, o), other_done = true;
+            if (k != got) others(k, x, o), got = k;
             loc[1] -= w * o[d] * n[d];
           }
         }

@@ -94,7 +94,7 @@ double ValveMonitors::plane_mean_pressure(const std::vector<Sample> &plane,
 double ValveMonitors::orifice_area(const std::vector<double> &x) const {
   const int n = pixels_;
   const double hpix = 2 * R_ / n;
-  std::vector<char> covered(size_t(n) * n, 0), all(size_t(n) * n);
+  std::vector<unsigned char> covered(size_t(n) * n, 0), all(size_t(n) * n);
   auto project = [&](const double *p, double q[2]) {
     double r[3];
     for (int d = 0; d < 3; ++d)
@@ -127,7 +127,7 @@ double ValveMonitors::orifice_area(const std::vector<double> &x) const {
         }
     }
   }
-  MPI_Allreduce(covered.data(), all.data(), n * n, MPI_CHAR, MPI_MAX, comm_);
+  MPI_Allreduce(covered.data(), all.data(), n * n, MPI_UNSIGNED_CHAR, MPI_MAX, comm_);
   long open = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
