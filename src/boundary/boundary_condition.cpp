@@ -15,6 +15,22 @@ void read_direction(const std::string &name, double dir[3]) {
     dir[i] = d[i] / nrm;
 }
 
+std::array<double, 3> read_point(const std::string &name) {
+  auto c = opt::reals(name);
+  if (c.size() != 3) throw InputError("option -" + name + " needs 3 numbers x,y,z");
+  return {c[0], c[1], c[2]};
+}
+
+double axis_distance2(const double x[3], const std::array<double, 3> &center,
+                      const std::array<double, 3> &dir) {
+  double r[3], along = 0, r2 = 0;
+  for (int d = 0; d < 3; ++d)
+    r[d] = x[d] - center[d], along += r[d] * dir[d];
+  for (int d = 0; d < 3; ++d)
+    r2 += (r[d] - along * dir[d]) * (r[d] - along * dir[d]);
+  return r2;
+}
+
 std::function<void(const double *, double, double *)> uniform_profile(const std::string &pre) {
   const double value = opt::real(pre + "value", 0);
   std::array<double, 3> dir;

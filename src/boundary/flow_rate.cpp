@@ -71,20 +71,11 @@ struct FlowRate : BoundaryCondition {
           v[d] = dir[d];
       };
     } else if (kind == "parabolic") {
-      std::array<double, 3> c = {glob[4] / glob[0], glob[5] / glob[0], glob[6] / glob[0]};
-      if (opt::has(pre_ + "center")) {
-        auto cc = opt::reals(pre_ + "center");
-        if (cc.size() != 3) throw InputError("option -" + pre_ + "center needs 3 numbers x,y,z");
-        c = {cc[0], cc[1], cc[2]};
-      }
-      auto radial2 = [c, dir](const double *x) {
-        double r[3], along = 0, r2 = 0;
-        for (int d = 0; d < 3; ++d)
-          r[d] = x[d] - c[d], along += r[d] * dir[d];
-        for (int d = 0; d < 3; ++d)
-          r2 += std::pow(r[d] - along * dir[d], 2);
-        return r2;
-      };
+      const std::array<double, 3> c =
+          opt::has(pre_ + "center")
+              ? read_point(pre_ + "center")
+              : std::array<double, 3>{glob[4] / glob[0], glob[5] / glob[0], glob[6] / glob[0]};
+      auto radial2 = [c, dir](const double *x) { return axis_distance2(x, c, dir); };
       double R2 = 0;
       if (opt::has(pre_ + "radius")) {
         R2 = std::pow(opt::required_positive(pre_ + "radius"), 2);

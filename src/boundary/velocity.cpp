@@ -4,8 +4,7 @@
 //   -bc_<name>_radius [m]: 2 (1 - r^2/R^2) times the value, r measured from the axis through the
 //   centre along the direction; exact: the -exact_solution flow; expression: -bc_<name>_expr,
 //   three values in x, y, z, t (expression.hpp) times -bc_<name>_value (default 1) and the
-//   waveform (default 1).  Waveform:
-//   analytic.hpp.
+//   waveform (default 1).  Waveform: analytic.hpp.
 #include "fsi/boundary/boundary_condition.hpp"
 #include "fsi/scene/options.hpp"
 
@@ -48,16 +47,10 @@ struct Velocity : BoundaryCondition {
     std::array<double, 3> dir;
     read_direction(pre + "direction", dir.data());
     const Waveform wave = Waveform::from_options(pre);
-    auto c = opt::reals(pre + "center");
-    if (c.size() != 3) throw InputError("option -" + pre + "center needs 3 numbers x,y,z");
-    const std::array<double, 3> center = {c[0], c[1], c[2]};
+    const std::array<double, 3> center = read_point(pre + "center");
     const double R = opt::required_positive(pre + "radius");
     profile = [=](const double *x, double t, double *v) {
-      double r[3], along = 0, r2 = 0;
-      for (int d = 0; d < 3; ++d)
-        r[d] = x[d] - center[d], along += r[d] * dir[d];
-      for (int d = 0; d < 3; ++d)
-        r2 += std::pow(r[d] - along * dir[d], 2);
+      const double r2 = axis_distance2(x, center, dir);
       const double mag = value * wave(t) * std::max(0.0, 2.0 * (1.0 - r2 / (R * R)));
       for (int d = 0; d < 3; ++d)
         v[d] = mag * dir[d];

@@ -17,9 +17,7 @@ void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const So
   if (!fluid || !solid)
     throw InputError("-valve_annulus_radius needs a fluid and a solid (-physics fluid,solid)");
   R_ = opt::required_positive("valve_annulus_radius");
-  auto c = opt::reals("valve_center");
-  if (!c.empty() && c.size() != 3) throw InputError("option -valve_center needs 3 numbers x,y,z");
-  if (c.size() == 3) c_ = {c[0], c[1], c[2]};
+  if (opt::has("valve_center")) c_ = read_point("valve_center");
   axis_ = {0, 0, 1};
   if (opt::has("valve_axis")) read_direction("valve_axis", axis_.data());
   // An orthonormal frame (e1, e2, axis) of the annulus plane.

@@ -12,6 +12,7 @@
 #include "fsi/discretization/space.hpp"
 #include "fsi/mesh/mesh.hpp"
 #include "fsi/time/step_context.hpp"
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -83,6 +84,10 @@ const std::vector<BoundaryType> &boundary_types();
 
 // Helpers shared by the types.
 void read_direction(const std::string &option, double dir[3]); // unit vector from x,y,z
+std::array<double, 3> read_point(const std::string &option);   // x,y,z
+// Squared distance of x from the axis through `center` along the unit vector `dir`.
+double axis_distance2(const double x[3], const std::array<double, 3> &center,
+                      const std::array<double, 3> &dir);
 // value * waveform(t) * direction from -<prefix>value, _direction and the waveform options.
 std::function<void(const double *, double, double *)> uniform_profile(const std::string &prefix);
 // Sum -w N_a t(x) over a fluid face on the configuration X_af (t from `traction`), plus the
