@@ -28,12 +28,22 @@ int run(MPI_Comm comm) {
     throw InputError("options -checkpoint_every and -sim_rebuild_every must be >= 0");
   OutputNames names{out.dir(), restart.empty() ? "fields" : "fields_restart",
                     restart.empty() ? "hemo" : "hemo_restart", opt::integer("out_fields_every", 0)};
-  Mesh mesh;
-  load_mesh(comm, mesh);
   std::unique_ptr<RunState> resume;
   if (!restart.empty())
     resume = std::make_unique<RunState>(RunState::read(comm, restart, scene.tag()));
-  auto sim = std::make_unique<Simulation>(mesh, scene, names, resume.get());
+  auto mesh = std::make_unique<Mesh>();
+  std::string mesh_file; // the remeshed mesh the run is on (empty: the scene's)
+  long remeshes = 0;
+  if (resume && !resume->mesh_file.empty()) { // a state after a remesh lives on that mesh
+    mesh_file = resume->mesh_file;
+    remeshes = resume->remeshes;
+    load_mesh_file(comm, *mesh, mesh_file);
+  } else {
+    load_mesh(comm, *mesh);
+  }
+  const long remesh_every = opt::integer("ale_remesh_every", 0);
+  if (remesh_every < 0) throw InputError("option -ale_remesh_every must be >= 0");
+  auto sim = std::make_unique<Simulation>(*mesh, scene, names, resume.get());
   StepControl control = StepControl::from_options(scene.time.dt);
   if (resume) {
     control.resume(resume->dt, resume->easy_run);
@@ -42,7 +52,7 @@ int run(MPI_Comm comm) {
   }
   const long first_step = sim->step_index();
   const double first_time = sim->time(), t_end = scene.time.t_end;
-  print_run_header(comm, scene, mesh, *sim);
+  print_run_header(comm, scene, *mesh, *sim);
   out.write_options();
   auto columns = sim->monitor_columns();
   RunReport report(comm, scene, columns);
@@ -59,6 +69,8 @@ int run(MPI_Comm comm) {
     RunState s = sim->capture();
     s.dt = control.dt;
     s.easy_run = control.easy_run;
+    s.mesh_file = mesh_file;
+    s.remeshes = remeshes;
     return s;
   };
   auto write_checkpoint = [&]() {
@@ -76,7 +88,27 @@ int run(MPI_Comm comm) {
       sim->set_dt(dt);
       const double t0 = MPI_Wtime();
       StepStats s;
-      if (!attempt_step(comm, *sim, control, s)) {
+      // Remesh the fluid at the last accepted state: when the step asks (its predicted mesh
+      // degrades) or every -ale_remesh_every steps; the step is then (re)taken on the new mesh.
+      auto remesh_now = [&]() {
+        RemeshReport r;
+        report.absorb(*sim);
+        RunState st = state();
+        remesh(comm, sim, mesh, names, st, r);
+        mesh_file = st.mesh_file;
+        remeshes = st.remeshes;
+        report.remeshed(out, r);
+      };
+      bool accepted;
+      try {
+        accepted = attempt_step(comm, *sim, control, s);
+      } catch (RemeshNeeded &e) {
+        PetscPrintf(comm, "fsi_app: remeshing before step %ld: %s\n", sim->step_index() + 1,
+                    e.what());
+        remesh_now();
+        continue;
+      }
+      if (!accepted) {
         report.failed_step();
         continue; // retried with the cut step
       }
@@ -85,12 +117,15 @@ int run(MPI_Comm comm) {
       report.record(out, *sim, s, dt, step_s); // monitors, monitor.csv row, fields
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);
+      if (remesh_every > 0 && sim->step_index() % remesh_every == 0 &&
+          sim->time() < t_end - 1e-9 * scene.time.dt)
+        remesh_now();
       if (checkpoint_every > 0 && sim->step_index() % checkpoint_every == 0) write_checkpoint();
       if (rebuild_every > 0 && sim->step_index() % rebuild_every == 0 &&
           sim->time() < t_end - 1e-9 * scene.time.dt) { // as a remesh does, on the same mesh
         const double r0 = MPI_Wtime();
         report.absorb(*sim);
-        sim = rebuild(std::move(sim), mesh, names, state());
+        sim = rebuild(std::move(sim), *mesh, names, state());
         report.rebuilt(MPI_Wtime() - r0);
       }
       if (const int sig = stop_requested(comm)) {
@@ -116,7 +151,7 @@ int run(MPI_Comm comm) {
   out.close_monitor();
   sim->close_outputs();
   report.absorb(*sim);
-  report.write(out, mesh, *sim, control, outcome, MPI_Wtime() - t_start, restart, first_step,
+  report.write(out, *mesh, *sim, control, outcome, MPI_Wtime() - t_start, restart, first_step,
                first_time, checkpoints > 0 ? checkpoint_path : "");
   return outcome.exit_code;
 }

@@ -22,6 +22,11 @@ struct DistortionError : SolveError {
   using SolveError::SolveError;
 };
 
+// The predicted (or iterated) fluid mesh calls for remeshing: the step is retried on a new mesh.
+struct RemeshNeeded : DistortionError {
+  using DistortionError::DistortionError;
+};
+
 struct PetscFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -14,6 +14,10 @@ Ale::Ale(const Space &space, std::unique_ptr<MeshMotion> motion,
   geometry_rtol_ = opt::positive("ale_geometry_rtol", 1e-6);
   min_jacobian_ = opt::real("ale_min_jacobian", 0.0);
   max_skewness_ = opt::positive("ale_max_skewness", 0.99);
+  remesh_skewness_ = opt::nonnegative("ale_remesh_skewness", 0.9);
+  remesh_min_ratio_ = opt::nonnegative("ale_remesh_min_volume_ratio", 0.1);
+  if (remesh_skewness_ >= 1)
+    throw InputError("-ale_remesh_skewness must be below 1 (0 turns remeshing off)");
   Xn_ = space.X;
   dn_.assign(space.X.size(), 0.0);
 }
@@ -91,21 +95,43 @@ double Ale::relative_change(const std::vector<double> &d) const {
 
 void Ale::check(const char *when, long step) {
   if (!motion_ || !fluid_cells_) return;
-  quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_);
-  if (quality_.min_jacobian <= min_jacobian_ || quality_.max_skewness >= max_skewness_) {
-    char msg[400];
+  const bool remesh = remeshing() && !fresh_;
+  if (remesh && skewness0_.empty()) {
+    for (PetscInt k : *fluid_cells_) {
+      double P[4][3];
+      space_.cell_points(k, space_.X.data(), P);
+      skewness0_.push_back(tet_skewness(P));
+    }
+  }
+  quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_, remesh ? &skewness0_ : nullptr);
+  const bool hard = quality_.min_jacobian <= min_jacobian_ || quality_.max_skewness >= max_skewness_;
+  const bool before = std::string(when) == "before";
+  const bool soft = before && (quality_.max_degraded_skewness > remesh_skewness_ ||
+                               quality_.min_jacobian < remesh_min_ratio_);
+  char msg[500];
+  if (remesh && (hard || soft)) {
+    std::snprintf(msg, sizeof msg,
+                  "mesh %s step %ld: worst skewness %.3f (degraded %.3f, -ale_remesh_skewness "
+                  "%.3g), smallest volume ratio %.3g (-ale_remesh_min_volume_ratio %.3g)",
+                  when, step, quality_.max_skewness, quality_.max_degraded_skewness,
+                  remesh_skewness_, quality_.min_jacobian, remesh_min_ratio_);
+    throw RemeshNeeded(msg);
+  }
+  if (hard) {
     std::snprintf(msg, sizeof msg,
                   "fluid mesh too distorted %s step %ld: smallest volume ratio %.3g (limit "
-                  "-ale_min_jacobian %.3g), worst skewness %.3f (limit -ale_max_skewness %.3f); "
-                  "remeshing is not available yet: refine the mesh, stiffen the motion "
-                  "(-ale_stiffening 1) or reduce the load",
+                  "-ale_min_jacobian %.3g), worst skewness %.3f (limit -ale_max_skewness %.3f)%s",
                   when, step, quality_.min_jacobian, min_jacobian_, quality_.max_skewness,
-                  max_skewness_);
+                  max_skewness_,
+                  fresh_ ? " on a mesh just remeshed: reduce the time step"
+                         : "; remeshing is off (-ale_remesh_skewness 0 or a prescribed motion): "
+                           "turn it on, refine the mesh or stiffen the motion (-ale_stiffening 1)");
     throw DistortionError(msg);
   }
 }
 
 void Ale::accept() {
+  fresh_ = false;
   dn_ = dnp1_;
   Xn_ = Xnp1_;
 }

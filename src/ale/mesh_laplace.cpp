@@ -21,7 +21,8 @@ std::vector<char> face_vertices(const Mesh &mesh, const Space &space, const std:
 
 class LaplaceMotion : public MeshMotion {
 public:
-  LaplaceMotion(const Mesh &mesh, const Space &space, const std::vector<PetscInt> &fluid_cells);
+  LaplaceMotion(const Mesh &mesh, const Space &space, const std::vector<PetscInt> &fluid_cells,
+                const std::vector<double> &material_X);
   ~LaplaceMotion() override;
   std::string name() const override {
     return chi_ > 0 ? "Jacobian-stiffened Laplace smoothing" : "Laplace smoothing";
@@ -36,6 +37,8 @@ private:
   std::vector<PetscInt> gidx_; // compact global vertex index per local vertex
   std::vector<PetscInt> vdof_; // velocity dof of each local vertex (reads the solid displacement)
   std::vector<char> solid_;    // local vertex touches a solid (non-fluid) cell
+  std::vector<double> offset_; // X - material_X: where a remesh put the ALE reference of a
+                               // solid vertex (0 on a first mesh)
   std::vector<PetscInt> rows_; // owned Dirichlet rows (global)
   std::vector<int> row_vc_;    // their local (3 * vertex + component)
   Mat A_ = nullptr, A0_ = nullptr;
@@ -45,8 +48,12 @@ private:
 };
 
 LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
-                             const std::vector<PetscInt> &fluid_cells)
+                             const std::vector<PetscInt> &fluid_cells,
+                             const std::vector<double> &material_X)
     : space_(space) {
+  offset_.resize(space.X.size());
+  for (size_t i = 0; i < offset_.size(); ++i)
+    offset_[i] = space.X[i] - material_X[i];
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
   chi_ = opt::nonnegative("ale_stiffening", 0.0);
   const PetscInt nv = space.n_vertices();
@@ -282,7 +289,8 @@ void LaplaceMotion::displacement(double, const PetscScalar *solid, std::vector<d
   std::vector<PetscScalar> vals(rows_.size());
   for (size_t r = 0; r < rows_.size(); ++r) {
     const int v = row_vc_[r] / 3, i = row_vc_[r] % 3;
-    vals[r] = solid_[v] && solid ? solid[vdof_[v] + i] : 0.0;
+    // mesh displacement = current position - ALE reference = u_solid - (X - material_X)
+    vals[r] = solid_[v] && solid ? solid[vdof_[v] + i] - offset_[3 * v + i] : 0.0;
   }
   FSI_CALL(VecSetValues(g_, (PetscInt)rows_.size(), rows_.data(), vals.data(), INSERT_VALUES));
   FSI_CALL(VecAssemblyBegin(g_));
@@ -313,8 +321,9 @@ void LaplaceMotion::displacement(double, const PetscScalar *solid, std::vector<d
 } // namespace
 
 std::unique_ptr<MeshMotion> make_laplace_motion(const Mesh &mesh, const Space &space,
-                                                const std::vector<PetscInt> &fluid_cells) {
-  return std::make_unique<LaplaceMotion>(mesh, space, fluid_cells);
+                                                const std::vector<PetscInt> &fluid_cells,
+                                                const std::vector<double> &material_X) {
+  return std::make_unique<LaplaceMotion>(mesh, space, fluid_cells, material_X);
 }
 
 } // namespace fsi

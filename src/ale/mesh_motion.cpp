@@ -8,7 +8,8 @@
 namespace fsi {
 
 std::unique_ptr<MeshMotion> make_laplace_motion(const Mesh &mesh, const Space &space,
-                                                const std::vector<PetscInt> &fluid_cells);
+                                                const std::vector<PetscInt> &fluid_cells,
+                                                const std::vector<double> &material_X);
 
 namespace {
 
@@ -44,56 +45,67 @@ struct PrescribedBubble : MeshMotion {
 } // namespace
 
 std::unique_ptr<MeshMotion> make_mesh_motion(const Mesh &mesh, const Space &space,
-                                             const std::vector<PetscInt> *fluid_cells) {
+                                             const std::vector<PetscInt> *fluid_cells,
+                                             const std::vector<double> &material_X) {
   const std::string kind = opt::choice("ale_motion", "none", {"none", "prescribed", "laplace"});
   if (kind == "prescribed")
     return std::make_unique<PrescribedBubble>(space, opt::real("ale_amplitude", 0.1),
                                               opt::positive("ale_time", 1.0));
   if (kind == "laplace") {
     if (!fluid_cells) throw InputError("-ale_motion laplace needs a fluid in the scene");
-    return make_laplace_motion(mesh, space, *fluid_cells);
+    return make_laplace_motion(mesh, space, *fluid_cells, material_X);
   }
   return nullptr;
 }
 
+double tet_skewness(const double P[4][3]) {
+  double a[3], b[3], c[3];
+  for (int d = 0; d < 3; ++d)
+    a[d] = P[1][d] - P[0][d], b[d] = P[2][d] - P[0][d], c[d] = P[3][d] - P[0][d];
+  double bc[3], ca[3], ab[3], s[3];
+  cross(b, c, bc);
+  cross(c, a, ca);
+  cross(a, b, ab);
+  const double V = std::fabs(a[0] * bc[0] + a[1] * bc[1] + a[2] * bc[2]) / 6;
+  if (V <= 0) return 1.0;
+  // circumradius: |a^2 (b x c) + b^2 (c x a) + c^2 (a x b)| / (12 V)
+  const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2],
+               b2 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
+               c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+  for (int d = 0; d < 3; ++d)
+    s[d] = a2 * bc[d] + b2 * ca[d] + c2 * ab[d];
+  const double R = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / (12 * V);
+  const double Vreg = 8 * std::sqrt(3.0) / 27 * R * R * R;
+  return std::min(1.0, std::max(0.0, 1 - V / Vreg));
+}
+
+static double signed_volume(const double Q[4][3]) {
+  double a[3], b[3], c[3];
+  for (int d = 0; d < 3; ++d)
+    a[d] = Q[1][d] - Q[0][d], b[d] = Q[2][d] - Q[0][d], c[d] = Q[3][d] - Q[0][d];
+  return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+          a[2] * (b[0] * c[1] - b[1] * c[0])) /
+         6.0;
+}
+
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
-                         const std::vector<double> &X) {
-  double jmin = 1e300, smax = 0, at[3] = {0, 0, 0};
-  for (PetscInt k : cells) {
+                         const std::vector<double> &X, const std::vector<double> *skewness0) {
+  double jmin = 1e300, smax = 0, sdeg = 0, at[3] = {0, 0, 0};
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const PetscInt k = cells[i];
     double P[4][3], P0[4][3];
     space.cell_points(k, X.data(), P);
     space.cell_points(k, space.X.data(), P0);
-    auto volume = [](const double Q[4][3], double a[3], double b[3], double c[3]) {
-      for (int d = 0; d < 3; ++d)
-        a[d] = Q[1][d] - Q[0][d], b[d] = Q[2][d] - Q[0][d], c[d] = Q[3][d] - Q[0][d];
-      return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
-              a[2] * (b[0] * c[1] - b[1] * c[0])) /
-             6.0;
-    };
-    double a[3], b[3], c[3], a0[3], b0[3], c0[3];
-    const double Vs = volume(P, a, b, c), V0 = volume(P0, a0, b0, c0), V = std::fabs(Vs);
+    const double Vs = signed_volume(P), V0 = signed_volume(P0);
     if (Vs / V0 < jmin) { // the vertex order may be negatively oriented: compare signs
       jmin = Vs / V0;
       for (int d = 0; d < 3; ++d)
         at[d] = 0.25 * (P[0][d] + P[1][d] + P[2][d] + P[3][d]);
     }
-    if (Vs / V0 <= 0) {
-      smax = 1;
-      continue;
-    }
-    // circumradius: |a^2 (b x c) + b^2 (c x a) + c^2 (a x b)| / (12 V)
-    double bc[3], ca[3], ab[3], s[3];
-    cross(b, c, bc);
-    cross(c, a, ca);
-    cross(a, b, ab);
-    const double a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2],
-                 b2 = b[0] * b[0] + b[1] * b[1] + b[2] * b[2],
-                 c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-    for (int d = 0; d < 3; ++d)
-      s[d] = a2 * bc[d] + b2 * ca[d] + c2 * ab[d];
-    const double R = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / (12 * V);
-    const double Vreg = 8 * std::sqrt(3.0) / 27 * R * R * R;
-    smax = std::max(smax, 1 - V / Vreg);
+    const double s = Vs / V0 <= 0 ? 1.0 : tet_skewness(P);
+    smax = std::max(smax, s);
+    // Degraded: its quality 1 - s at most half of what it was in the reference mesh.
+    if (skewness0 && 1 - s <= 0.5 * (1 - (*skewness0)[i])) sdeg = std::max(sdeg, s);
   }
   MeshQuality q;
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
@@ -107,6 +119,7 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
   std::copy(at, at + 3, q.where);
   MPI_Bcast(q.where, 3, MPI_DOUBLE, least.rank, comm);
   MPI_Allreduce(&smax, &q.max_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
+  MPI_Allreduce(&sdeg, &q.max_degraded_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
   return q;
 }
 

@@ -108,6 +108,10 @@ double H5File::get(const std::string &attr) const {
   return v;
 }
 
+bool H5File::has_attribute(const std::string &attr) const {
+  return H5Aexists(id_, attr.c_str()) > 0;
+}
+
 std::string H5File::get_string(const std::string &attr) const {
   if (H5Aexists(id_, attr.c_str()) <= 0)
     throw InputError("'" + path_ + "' has no attribute " + attr + " (not an fsi_app file?)");
@@ -149,19 +153,45 @@ KeyedItems gather_sorted(MPI_Comm comm, const std::vector<double> &keys,
   gatherv(keys, all.keys, kdim);
   gatherv(values, all.values, vdim);
   if (rank != 0) return out;
-  const size_t N = all.keys.size() / kdim;
+  sort_items(all, kdim, vdim);
+  return all;
+}
+
+void sort_items(KeyedItems &items, int kdim, int vdim) {
+  const size_t N = items.keys.size() / kdim;
   std::vector<size_t> idx(N);
   std::iota(idx.begin(), idx.end(), 0);
   std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) {
-    return key_less(&all.keys[a * kdim], &all.keys[b * kdim], kdim);
+    return key_less(&items.keys[a * kdim], &items.keys[b * kdim], kdim);
   });
-  out.keys.resize(all.keys.size());
-  out.values.resize(all.values.size());
+  KeyedItems out;
+  out.keys.resize(items.keys.size());
+  out.values.resize(items.values.size());
   for (size_t i = 0; i < N; ++i) {
-    std::copy_n(&all.keys[idx[i] * kdim], kdim, &out.keys[i * kdim]);
-    std::copy_n(&all.values[idx[i] * vdim], vdim, &out.values[i * vdim]);
+    std::copy_n(&items.keys[idx[i] * kdim], kdim, &out.keys[i * kdim]);
+    std::copy_n(&items.values[idx[i] * vdim], vdim, &out.values[i * vdim]);
   }
-  return out;
+  items = std::move(out);
+}
+
+long find_key(const KeyedItems &items, const double *k, int kdim) {
+  const long N = (long)(items.keys.size() / kdim);
+  long lo = 0, hi = N;
+  while (lo < hi) {
+    const long mid = (lo + hi) / 2;
+    if (key_less(&items.keys[mid * kdim], k, kdim))
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo < N && std::equal(k, k + kdim, &items.keys[lo * kdim]) ? lo : -1;
+}
+
+void face_key(const double *a, const double *b, const double *c, double key[3]) {
+  const double *p[3] = {a, b, c};
+  std::sort(p, p + 3, [](const double *x, const double *y) { return key_less(x, y, 3); });
+  for (int d = 0; d < 3; ++d)
+    key[d] = (p[0][d] + p[1][d] + p[2][d]) / 3;
 }
 
 long scatter_by_key(MPI_Comm comm, const KeyedItems &all, const std::vector<double> &keys,

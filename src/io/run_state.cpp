@@ -31,6 +31,8 @@ void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write
         f.set("time", time);
         f.set("dt", dt);
         f.set("easy_run", (double)easy_run);
+        f.set("remeshes", (double)remeshes);
+        if (!mesh_file.empty()) f.set("mesh_file", mesh_file);
         f.write("/dofs/keys", dofs.keys, 4);
         f.write("/dofs/state", dofs.values,
                 dofs.keys.empty() ? 1 : dofs.values.size() / (dofs.keys.size() / 4));
@@ -76,7 +78,7 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
   MPI_Comm_rank(comm, &rank);
   RunState s;
   s.scene = scene;
-  double meta[5] = {0, 0, 0, 0, 0}; // step, time, dt, easy_run, dof count
+  double meta[6] = {0, 0, 0, 0, 0, 0}; // step, time, dt, easy_run, dof count, remeshes
   std::string err;
   if (rank == 0) {
     try {
@@ -92,6 +94,8 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
       meta[1] = f.get("time");
       meta[2] = f.get("dt");
       meta[3] = f.get("easy_run");
+      if (f.has_attribute("remeshes")) meta[5] = f.get("remeshes");
+      if (f.has_attribute("mesh_file")) s.mesh_file = f.get_string("mesh_file");
       s.dofs.keys = f.read("/dofs/keys");
       s.dofs.values = f.read("/dofs/state");
       meta[4] = (double)(s.dofs.keys.size() / 4);
@@ -128,7 +132,12 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
     MPI_Bcast(err.data(), len, MPI_CHAR, 0, comm);
     throw InputError(err);
   }
-  MPI_Bcast(meta, 5, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(meta, 6, MPI_DOUBLE, 0, comm);
+  s.remeshes = std::lround(meta[5]);
+  int nm = (int)s.mesh_file.size();
+  MPI_Bcast(&nm, 1, MPI_INT, 0, comm);
+  s.mesh_file.resize(nm);
+  MPI_Bcast(s.mesh_file.data(), nm, MPI_CHAR, 0, comm);
   int nw = (int)s.hemo_window.size(); // scalars: on every rank
   MPI_Bcast(&nw, 1, MPI_INT, 0, comm);
   s.hemo_window.resize(nw);

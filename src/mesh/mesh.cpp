@@ -158,6 +158,11 @@ void load_mesh(MPI_Comm comm, Mesh &mesh) {
   }
   if (!file_exists(file))
     throw InputError("mesh file " + file + " not found: check -mesh_file (or run scripts/setup)");
+  load_mesh_file(comm, mesh, file);
+}
+
+void load_mesh_file(MPI_Comm comm, Mesh &mesh, const std::string &file) {
+  if (!file_exists(file)) throw InputError("mesh file " + file + " not found");
   mesh.source = file;
 
   // Physical names become labels; read errors become one line instead of a PETSc traceback.

@@ -42,13 +42,13 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
     const size_t nf = s.faces.size();
     s.key.resize(3 * nf);
     std::vector<double> pts(9 * nf);
-    for (size_t i = 0; i < nf; ++i)
+    for (size_t i = 0; i < nf; ++i) {
+      const int *v = s.faces[i].vertex;
+      face_key(&space.X[3 * v[0]], &space.X[3 * v[1]], &space.X[3 * v[2]], &s.key[3 * i]);
       for (int j = 0; j < 3; ++j)
-        for (int d = 0; d < 3; ++d) {
-          const double x = space.X[3 * s.faces[i].vertex[j] + d];
-          s.key[3 * i + d] += x / 3;
-          pts[9 * i + 3 * j + d] = x;
-        }
+        for (int d = 0; d < 3; ++d)
+          pts[9 * i + 3 * j + d] = space.X[3 * v[j] + d];
+    }
     s.tau.assign(3 * nf, 0.0);
     s.area.assign(nf, 0.0);
     s.acc.assign(4 * nf, 0.0);

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
+#include <sys/stat.h>
 
 namespace fsi {
 
@@ -35,6 +37,38 @@ std::unique_ptr<Simulation> rebuild(std::unique_ptr<Simulation> old, const Mesh 
   names.fields = part + "fields";
   names.hemo = part + "hemo";
   return std::make_unique<Simulation>(mesh, scene, names, &state);
+}
+
+void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mesh> &mesh,
+            OutputNames &names, RunState &state, RemeshReport &report) {
+  const double t0 = MPI_Wtime();
+  const long k = state.remeshes + 1;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  const std::string dir = names.dir + "/remesh";
+  if (rank == 0) mkdir(dir.c_str(), 0775);
+  char file[64];
+  std::snprintf(file, sizeof file, "/mesh_%03ld.msh", k);
+  const std::string path = dir + file;
+  report.step = state.step;
+  report.time = state.time;
+  if (!sim->fluid()) throw InputError("remeshing needs a fluid");
+  RunState next = remesh_fluid(*mesh, sim->space(), sim->fluid()->cells(), state, path, report);
+  char *abs = rank == 0 ? realpath(path.c_str(), nullptr) : nullptr;
+  next.mesh_file = abs ? abs : path;
+  free(abs);
+  next.remeshes = k;
+  const Scene &scene = sim->scene();
+  sim->close_outputs();
+  sim.reset(); // nothing of the old space survives
+  mesh = std::make_unique<Mesh>();
+  load_mesh_file(comm, *mesh, path);
+  names.fields = "remesh" + std::to_string(k) + "_fields";
+  names.hemo = "remesh" + std::to_string(k) + "_hemo";
+  sim = std::make_unique<Simulation>(*mesh, scene, names, &next);
+  sim->set_fresh_mesh();
+  state = std::move(next);
+  report.seconds = MPI_Wtime() - t0;
 }
 
 static volatile sig_atomic_t g_stop_signal = 0;

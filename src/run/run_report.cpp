@@ -88,6 +88,10 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
     active.push_back(m->name());
   if (sim.ale().moving()) active.push_back("mesh motion: " + sim.ale().motion()->name());
   Json dofs, times, iters, cost, j;
+  double remesh_time = 0, remesh_gmsh = 0, remesh_mem = 0;
+  for (auto &r : remeshes_)
+    remesh_time += r.seconds, remesh_gmsh += r.mesh_seconds,
+        remesh_mem = std::max(remesh_mem, r.memory_mb);
   dofs.set("velocity", (long)space.n_velocity)
       .set("pressure", (long)space.n_pressure)
       .set("pressure_held_outside_fluid", sim.boundaries().pressure_dofs_outside_fluid())
@@ -99,6 +103,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
       .set("linear_solver", ls)
       .set("mesh_motion", mesh_motion_time_)
       .set("rebuild", rebuild_time_)
+      .set("remesh", remesh_time)
       .set("output", output_time_)
       .set("per_step", per_step);
   iters.set("newton_total", newton_)
@@ -147,6 +152,16 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
       .set("grows", control.grows)
       .set("dt_final", control.dt);
   j.set("step_control", sc);
+  if (!remeshes_.empty() || sim.ale().remeshing()) {
+    Json r;
+    r.set("count", (long)remeshes_.size())
+        .set("seconds", remesh_time)
+        .set("gmsh_seconds", remesh_gmsh)
+        .set("share_of_wall", wall > 0 ? remesh_time / wall : 0.0)
+        .set("peak_memory_mb_rank0", remesh_mem)
+        .set("log", "remesh.csv");
+    j.set("remesh", r);
+  }
   if (!restart.empty()) {
     Json r;
     r.set("file", restart).set("step", first_step).set("time", first_time);
@@ -185,15 +200,43 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
   PetscPrintf(comm_,
               "fsi_app: %s: %ld steps, %.3g s/step; Newton %.2f/step (max %ld), Krylov %.1f/Newton "
               "(max %ld/step); wall %.2f s = setup %.2f + Jacobian %.2f + residual %.2f + linear "
-              "solver %.2f + mesh motion %.2f + rebuild %.2f + output %.2f + other %.2f; %ld dofs "
+              "solver %.2f + mesh motion %.2f + rebuild/remesh %.2f + output %.2f + other %.2f; %ld dofs "
               "(velocity %ld, pressure %ld); peak memory %.0f MB/rank; results in %s\n",
               status, steps_, per_step, steps_ ? double(newton_) / steps_ : 0.0, newton_max_,
               newton_ ? double(krylov_) / newton_ : 0.0, krylov_max_, wall, setup_time_, jt, rt, ls,
-              mesh_motion_time_, rebuild_time_, output_time_,
+              mesh_motion_time_, rebuild_time_ + remesh_time, output_time_,
               std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ - rebuild_time_ -
-                                output_time_),
+                                remesh_time - output_time_),
               (long)(space.n_velocity + space.n_pressure), (long)space.n_velocity,
               (long)space.n_pressure, mem_max, out.dir().c_str());
+}
+
+void RunReport::remeshed(const Output &out, const RemeshReport &r) {
+  remeshes_.push_back(r);
+  PetscPrintf(comm_,
+              "fsi_app: remesh %zu at step %ld, t = %.6e s: worst fluid skewness %.3f -> %.3f, "
+              "fluid cells %ld -> %ld, volume change %.1e, kinetic energy change %.2e, "
+              "div/grad %.1e -> %.1e; %.2f s (gmsh %.2f s)\n",
+              remeshes_.size(), r.step, r.time, r.skewness_before, r.skewness_after,
+              r.fluid_cells_before, r.fluid_cells_after,
+              r.volume_after / r.volume_before - 1, r.kinetic_after / r.kinetic_before - 1,
+              r.divergence_before, r.divergence_after, r.seconds, r.mesh_seconds);
+  std::string csv = "remesh,step,time,skewness_before,skewness_after,fluid_cells_before,"
+                    "fluid_cells_after,volume_before,volume_after,kinetic_before,kinetic_after,"
+                    "divergence_before,divergence_after,gmsh_seconds,seconds,peak_memory_mb\n";
+  char row[600];
+  for (size_t i = 0; i < remeshes_.size(); ++i) {
+    const RemeshReport &q = remeshes_[i];
+    std::snprintf(row, sizeof row,
+                  "%zu,%ld,%.10e,%.6f,%.6f,%ld,%ld,%.12e,%.12e,%.12e,%.12e,%.6e,%.6e,%.4f,%.4f,"
+                  "%.1f\n",
+                  i + 1, q.step, q.time, q.skewness_before, q.skewness_after, q.fluid_cells_before,
+                  q.fluid_cells_after, q.volume_before, q.volume_after, q.kinetic_before,
+                  q.kinetic_after, q.divergence_before, q.divergence_after, q.mesh_seconds,
+                  q.seconds, q.memory_mb);
+    csv += row;
+  }
+  out.write_file("remesh.csv", csv);
 }
 
 } // namespace fsi

@@ -5,8 +5,13 @@
 //     re-solve on the mesh moved by the new solid displacement until it changes by less than
 //     -ale_geometry_rtol, default 1e-6)
 //   -ale_min_jacobian (default 0), -ale_max_skewness (default 0.99): a fluid cell past these on
-//     the predicted or iterated mesh stops the step (DistortionError); this is where remeshing
-//     will hook in (wants_remesh()).
+//     the predicted or iterated mesh stops the step (DistortionError), unless remeshing is on.
+//   -ale_remesh_skewness S (default 0.9, the paper's; 0 = off), -ale_remesh_min_volume_ratio R
+//     (default 0.1): with the Laplace motion, the step whose predicted mesh has a degraded cell
+//     (quality 1 - s at least halved against the reference mesh) with skewness > S, or a cell
+//     squeezed below R of its reference volume, or any cell past the hard limits above, throws
+//     RemeshNeeded before its solve; the run remeshes (remesh.hpp) and retries the step.  The
+//     first step on a new mesh only stops at the hard limits (no remesh loop).
 // Coordinates are 3 per local vertex; the fluid mesh's reference is Space::X (the ALE
 // reference, where the mesh displacement is zero), not the solid's material reference.
 #pragma once
@@ -54,8 +59,9 @@ public:
   // Quality of the fluid cells at t_{n+1}; throws DistortionError past the limits.
   void check(const char *when, long step);
   const MeshQuality &quality() const { return quality_; }
-  // Remeshing hook (issue 15): true when the mesh should be rebuilt instead of stopping.
-  bool wants_remesh() const { return false; }
+  // Remeshing: on for this run; fresh = the mesh was just built, its first step does not ask.
+  bool remeshing() const { return remesh_skewness_ > 0 && follows_solid(); }
+  void set_fresh(bool fresh) { fresh_ = fresh; }
   // After a converged step: d_n <- d_{n+1}.
   void accept();
   double seconds() const { return seconds_; }
@@ -66,6 +72,9 @@ private:
   const std::vector<PetscInt> *fluid_cells_;
   int geometry_iterations_ = 0;
   double geometry_rtol_ = 1e-6, min_jacobian_ = 0, max_skewness_ = 0.99;
+  double remesh_skewness_ = 0.9, remesh_min_ratio_ = 0.1;
+  bool fresh_ = false;
+  std::vector<double> skewness0_; // per fluid cell, in the reference mesh
   std::vector<double> dn_, dnp1_, Xn_, Xaf_, Xnp1_, W_;
   bool has_velocity_ = false;
   MeshQuality quality_;

@@ -33,18 +33,28 @@ struct MeshMotion {
 };
 
 // fluid_cells: local cells of the fluid (nullptr without a fluid).
+// material_X: the solid's material reference per local vertex (the solid displacement moves
+// solid vertices from there; after a remesh it differs from the ALE reference Space::X).
 std::unique_ptr<MeshMotion> make_mesh_motion(const Mesh &mesh, const Space &space,
-                                             const std::vector<PetscInt> *fluid_cells);
+                                             const std::vector<PetscInt> *fluid_cells,
+                                             const std::vector<double> &material_X);
 
 // Quality of the fluid cells on vertex coordinates X: the smallest ratio of deformed to
 // reference volume (<= 0: inverted) and the largest volume skewness 1 - V / V_regular(R)
 // (R the circumradius; 0 regular, 1 degenerate), over all ranks.
 struct MeshQuality {
   double min_jacobian = 1, max_skewness = 0;
+  // The worst skewness among cells whose quality 1 - s has at least halved against the
+  // reference mesh (given its per-cell skewness): what remeshing can cure.  A mesh generator's
+  // slivers that stay as bad as they were do not count.
+  double max_degraded_skewness = 0;
   double where[3] = {0, 0, 0}; // centre of the cell with the smallest volume ratio (the one the
                                // motion crushes most)
 };
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
-                         const std::vector<double> &X);
+                         const std::vector<double> &X,
+                         const std::vector<double> *skewness0 = nullptr);
+// Volume skewness of one tetrahedron (0 regular, 1 degenerate).
+double tet_skewness(const double P[4][3]);
 
 } // namespace fsi

@@ -26,6 +26,7 @@ public:
   void set(const std::string &attr, double v);
   void set(const std::string &attr, const std::string &v);
   double get(const std::string &attr) const;
+  bool has_attribute(const std::string &attr) const;
   std::string get_string(const std::string &attr) const;
   void flush();
 
@@ -48,5 +49,12 @@ KeyedItems gather_sorted(MPI_Comm comm, const std::vector<double> &keys,
 // to this mesh), summed over ranks.
 long scatter_by_key(MPI_Comm comm, const KeyedItems &all, const std::vector<double> &keys,
                     std::vector<double> &values, int kdim, int vdim);
+// Sort items by key in place (the order gather_sorted() leaves and scatter_by_key() expects).
+void sort_items(KeyedItems &items, int kdim, int vdim);
+// Index of the item with exactly this key in sorted items, or -1.
+long find_key(const KeyedItems &items, const double *key, int kdim);
+// The key of a triangle: its centroid summed in a canonical (lexicographic) vertex order, so that
+// it does not depend on how a mesh orders the face's vertices.
+void face_key(const double *a, const double *b, const double *c, double key[3]);
 
 } // namespace fsi

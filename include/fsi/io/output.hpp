@@ -45,6 +45,10 @@ public:
   void monitor_row(const std::vector<double> &values);
   void close_monitor();
   void write_summary(const Json &j) const;
+  // A small text file in the output directory, written atomically by rank 0.
+  void write_file(const std::string &name, const std::string &content) const {
+    write_atomic(name, content);
+  }
 
 private:
   void write_atomic(const std::string &name, const std::string &content) const;

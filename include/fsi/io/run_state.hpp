@@ -17,6 +17,10 @@ struct RunState {
   double time = 0, dt = 0;
   long easy_run = 0; // step control's count of easy steps
   long n_dofs = 0;   // global dof count of the run that captured it
+  // After a remesh: the mesh the state lives on (a .msh path relative to the checkpoint's
+  // directory, or absolute) and how many remeshes led to it; empty: the scene's mesh.
+  std::string mesh_file;
+  long remeshes = 0;
   // Per dof: key (x, y, z of the node in the ALE reference, component; 3 = pressure), values
   // V_n, A_n, D_n (the generalized-alpha history and the solid displacement).
   KeyedItems dofs;

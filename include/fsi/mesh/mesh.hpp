@@ -30,5 +30,7 @@ std::string resolve_path(const std::string &path);
 
 // Read -mesh_file or -mesh_geo/-mesh_h/-mesh_params, build and distribute the DMPlex.
 void load_mesh(MPI_Comm comm, Mesh &mesh);
+// Read a gmsh .msh file (e.g. a remeshed one), build and distribute the DMPlex.
+void load_mesh_file(MPI_Comm comm, Mesh &mesh, const std::string &file);
 
 } // namespace fsi

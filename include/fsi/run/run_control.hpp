@@ -3,6 +3,7 @@
 // step are typos in a scene (an error before any result is written, unless
 // -allow_unused_options); a progress line per step.
 #pragma once
+#include "fsi/ale/remesh.hpp"
 #include "fsi/run/simulation.hpp"
 #include "fsi/time/step_control.hpp"
 #include <memory>
@@ -17,6 +18,13 @@ bool attempt_step(MPI_Comm comm, Simulation &sim, StepControl &control, StepStat
 // wall-shear files continue under new names.
 std::unique_ptr<Simulation> rebuild(std::unique_ptr<Simulation> old, const Mesh &mesh,
                                     OutputNames &names, const RunState &state);
+// Remesh the fluid of `sim` at `state` (its last accepted state, with dt and step control set):
+// the new mesh is written to DIR/remesh/mesh_<k>.msh, read and distributed into `mesh` (which
+// the old sim indexed; destroyed first), and `sim` becomes the run on it.  `state` receives the
+// new mesh's file and count.  Throws RemeshError with `sim` and `mesh` untouched (the caller
+// can still checkpoint the last good state).
+void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mesh> &mesh,
+            OutputNames &names, RunState &state, RemeshReport &report);
 void install_stop_handlers();
 // The signal any rank received (0 if none), collective.
 int stop_requested(MPI_Comm comm);

@@ -3,6 +3,7 @@
 // defines) and the one-line cost summary on stdout.  Costs of every Simulation the run built
 // (rebuilds, remeshes) are summed.
 #pragma once
+#include "fsi/ale/remesh.hpp"
 #include "fsi/io/output.hpp"
 #include "fsi/run/simulation.hpp"
 #include "fsi/time/step_control.hpp"
@@ -28,6 +29,8 @@ public:
   // Costs of a Simulation about to be destroyed (a rebuild), or of the last one at the end.
   void absorb(const Simulation &sim);
   void rebuilt(double seconds) { ++rebuilds_, rebuild_time_ += seconds; }
+  // A remesh (its seconds include the new Simulation): summary.json's "remesh" and remesh.csv.
+  void remeshed(const Output &out, const RemeshReport &r);
   void set_setup_time(double s) { setup_time_ = s; }
   void add_output_time(double s) { output_time_ += s; }
   long steps() const { return steps_; }
@@ -44,6 +47,7 @@ private:
   long steps_ = 0, newton_ = 0, krylov_ = 0, newton_max_ = 0, krylov_max_ = 0, failed_ = 0;
   long rebuilds_ = 0, jacobians_ = 0, residuals_ = 0, pattern_builds_ = 0;
   double setup_time_ = 0, output_time_ = 0, rebuild_time_ = 0;
+  std::vector<RemeshReport> remeshes_;
   double jacobian_time_ = 0, residual_time_ = 0, solve_time_ = 0, mesh_motion_time_ = 0;
 };
 

@@ -61,6 +61,8 @@ public:
   // solid element inverted) or DistortionError (fluid mesh past its quality limits).
   StepStats step();
   void set_dt(double dt);
+  // The mesh was just remeshed: its first step does not ask for another remesh.
+  void set_fresh_mesh() { ale_->set_fresh(true); }
   double dt() const { return time_->dt(); }
   const Scene &scene() const { return scene_; }
   double time() const { return time_->time(); }

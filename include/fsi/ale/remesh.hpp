@@ -1,0 +1,55 @@
+// Remeshing the fluid (the paper: "whenever the skewness of an element is bigger than 0.9"; the
+// trigger is in ale.hpp).  The deformed fluid boundary -- walls, inlet, outlet and the
+// fluid-solid interface at its current position -- is gathered on rank 0 and the fluid volume is
+// meshed again with gmsh (discrete surfaces, Delaunay), keeping every boundary triangle, so that
+// the fluid stays conforming to the solid, whose cells, material reference and state are
+// untouched.  The new mesh (new fluid cells + the old solid cells, the same physical groups) is
+// written as a .msh and read like the first one, so it is distributed the same way and a
+// checkpoint can name it.  Sizes come from the boundary triangles (gmsh extends them inwards),
+// capped by -ale_remesh_hmax when given.
+//
+// State transfer (remesh_state): nodes that survive (solid nodes, boundary vertices and edges)
+// keep their values exactly; new fluid nodes get the old fields evaluated in the old fluid mesh
+// in its current configuration: P2 velocity, acceleration and displacement histories, P1
+// pressure.  The new mesh is the new ALE reference (mesh displacement 0); the solid keeps its
+// material reference; wall-shear accumulators move with their faces.  The interpolated velocity
+// is not projected: its divergence, its kinetic energy and the fluid volume are measured before
+// and after and reported (RemeshReport, remesh.csv), see docs/remeshing.md.
+//   -ale_remesh_hmax H     largest new cell size [m] (default: from the boundary only)
+//   -ale_remesh_every N    also remesh after every N-th step (tests, studies; default 0)
+#pragma once
+#include "fsi/io/run_state.hpp"
+#include "fsi/mesh/mesh.hpp"
+#include <string>
+#include <vector>
+
+namespace fsi {
+
+struct Space;
+
+// gmsh could not mesh the boundary (or changed it): the run stops with a checkpoint (exit 3).
+struct RemeshError : SolveError {
+  using SolveError::SolveError;
+};
+
+struct RemeshReport {
+  long step = 0;
+  double time = 0;
+  long fluid_cells_before = 0, fluid_cells_after = 0;
+  double skewness_before = 0, skewness_after = 0; // worst fluid cell
+  double volume_before = 0, volume_after = 0;     // fluid volume [m^3]
+  double kinetic_before = 0, kinetic_after = 0;   // int |v|^2 / 2 over the fluid [m^5/s^2]
+  double divergence_before = 0, divergence_after = 0; // ||div v|| / ||grad v|| (L2, fluid)
+  double mesh_seconds = 0, seconds = 0; // gmsh alone; the whole remesh (with the new run)
+  double memory_mb = 0;                 // rank 0's peak resident memory after the remesh
+};
+
+// Mesh the fluid again from the boundary of `mesh` at the positions of `state` (the state at the
+// last accepted step, as Simulation::capture() gives it) and write it to msh_path (rank 0,
+// atomically); return the state on the new mesh (data on rank 0).  Collective.  Throws
+// RemeshError if gmsh fails; InputError if the mesh cannot be remeshed (a fluid boundary face in
+// no physical group).
+RunState remesh_fluid(const Mesh &mesh, const Space &space, const std::vector<PetscInt> &fluid_cells,
+                      const RunState &state, const std::string &msh_path, RemeshReport &report);
+
+} // namespace fsi
