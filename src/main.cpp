@@ -38,10 +38,12 @@ int run(MPI_Comm comm) {
     mesh_file = resume->mesh_file;
     remeshes = resume->remeshes;
     load_mesh_file(comm, *mesh, mesh_file);
+    skip_scene_mesh_options();
   } else {
     load_mesh(comm, *mesh);
   }
   const long remesh_every = opt::integer("ale_remesh_every", 0);
+  const RemeshOptions remesh_options = RemeshOptions::from_options();
   if (remesh_every < 0) throw InputError("option -ale_remesh_every must be >= 0");
   auto sim = std::make_unique<Simulation>(*mesh, scene, names, resume.get());
   StepControl control = StepControl::from_options(scene.time.dt);
@@ -94,7 +96,7 @@ int run(MPI_Comm comm) {
         RemeshReport r;
         report.absorb(*sim);
         RunState st = state();
-        remesh(comm, sim, mesh, names, st, r);
+        remesh(comm, sim, mesh, names, st, remesh_options, r);
         mesh_file = st.mesh_file;
         remeshes = st.remeshes;
         report.remeshed(out, r);

@@ -104,7 +104,8 @@ void Ale::check(const char *when, long step) {
     }
   }
   quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_, remesh ? &skewness0_ : nullptr);
-  const bool hard = quality_.min_jacobian <= min_jacobian_ || quality_.max_skewness >= max_skewness_;
+  const bool hard =
+      quality_.min_jacobian <= min_jacobian_ || quality_.max_skewness >= max_skewness_;
   const bool before = std::string(when) == "before";
   const bool soft = before && (quality_.max_degraded_skewness > remesh_skewness_ ||
                                quality_.min_jacobian < remesh_min_ratio_);

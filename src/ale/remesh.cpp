@@ -353,12 +353,12 @@ std::vector<std::vector<int>> boundary_surfaces(const std::vector<Tri> &tris,
 // gmsh: the fluid volume inside the given boundary triangles (node k at x[k], tag k + 1).  Returns
 // the new tetrahedra in node indices; new nodes are appended to x.
 std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::vector<Tri> &tris,
-                             const std::vector<double> &mask) {
-  const double hmax = opt::real("ale_remesh_hmax", 0.0);
+                             const std::vector<double> &mask, const RemeshOptions &o) {
+  const double hmax = o.hmax;
   gmsh::initialize(0, nullptr, false);
   std::vector<Tet> tets;
   try {
-    gmsh::option::setNumber("General.Terminal", opt::integer("ale_remesh_verbose", 0) ? 1 : 0);
+    gmsh::option::setNumber("General.Terminal", o.verbose ? 1 : 0);
     gmsh::option::setNumber("Mesh.MeshOnlyEmpty", 1);
     gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay, sizes from the boundary
     if (hmax > 0) gmsh::option::setNumber("Mesh.MeshSizeMax", hmax);
@@ -409,7 +409,7 @@ std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::v
     for (size_t k = 0; k < etags.size(); ++k)
       tets.push_back({index.at(enodes[4 * k]), index.at(enodes[4 * k + 1]),
                       index.at(enodes[4 * k + 2]), index.at(enodes[4 * k + 3])});
-  } catch (std::exception &e) {
+  } catch (...) { // gmsh throws std::string as well as std::exception
     std::string err;
     try {
       gmsh::logger::getLastError(err);
@@ -417,7 +417,7 @@ std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::v
     }
     gmsh::finalize();
     throw RemeshError("gmsh could not mesh the deformed fluid boundary (" +
-                      (err.empty() ? std::string(e.what()) : err) + ")");
+                      (err.empty() ? std::string("no message") : err) + ")");
   }
   gmsh::finalize();
   if (tets.empty()) throw RemeshError("gmsh returned no fluid cells for the deformed boundary");
@@ -427,8 +427,7 @@ std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::v
 // A gmsh 2.2 ASCII mesh (exact coordinates with 17 digits), written atomically.
 void write_msh(const std::string &path, const std::vector<std::array<double, 3>> &x,
                const std::vector<Tet> &tets, const std::vector<double> &tet_mask,
-               const std::vector<Tri> &tris, const std::vector<double> &tri_mask,
-               const Groups &g) {
+               const std::vector<Tri> &tris, const std::vector<double> &tri_mask, const Groups &g) {
   const std::string tmp = path + ".partial";
   FILE *f = std::fopen(tmp.c_str(), "w");
   if (!f) throw InputError("cannot write the remeshed mesh " + path);
@@ -478,7 +477,7 @@ double skewness_of(const std::vector<std::array<double, 3>> &x, const Tet &t) {
 
 // Rank 0: the remesh proper.  Returns the new state.
 RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old,
-                        const std::string &msh_path, RemeshReport &rep) {
+                        const RemeshOptions &o, const std::string &msh_path, RemeshReport &rep) {
   // Old vertices: the state's vertex items (sorted by reference position).
   const KeyedItems &V = old.vertices;
   const size_t nv = V.size(3);
@@ -564,7 +563,7 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
   std::vector<Tri> btris;
   for (auto &t : boundary)
     btris.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
-  if (opt::integer("ale_remesh_test_fault", 0) == 1 && !btris.empty()) {
+  if (o.test_fault == 1 && !btris.empty()) {
     // A test of the failure path: one boundary vertex thrown across the domain.
     auto &p = y[btris[btris.size() / 2][0]];
     for (int d = 0; d < 3; ++d)
@@ -572,7 +571,7 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
   }
 
   const double m0 = MPI_Wtime();
-  std::vector<Tet> new_fluid = mesh_volume(y, btris, bmask);
+  std::vector<Tet> new_fluid = mesh_volume(y, btris, bmask, o);
   rep.mesh_seconds = MPI_Wtime() - m0;
 
   // The new fluid cells' boundary must be the old boundary, triangle for triangle.
@@ -719,8 +718,7 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
     if (keep[t[0]] && keep[t[1]] && keep[t[2]]) {
       double k0[3], k1[3];
       face_key(Xref[t[0]].data(), Xref[t[1]].data(), Xref[t[2]].data(), k0);
-      face_key(y[new_index[t[0]]].data(), y[new_index[t[1]]].data(), y[new_index[t[2]]].data(),
-               k1);
+      face_key(y[new_index[t[0]]].data(), y[new_index[t[1]]].data(), y[new_index[t[2]]].data(), k1);
       moved.keys.insert(moved.keys.end(), k0, k0 + 3);
       moved.values.insert(moved.values.end(), k1, k1 + 3);
     }
@@ -757,8 +755,8 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
     for (int a = 0; a < 10; ++a) {
       double key[4];
       for (int d = 0; d < 3; ++d) {
-        key[d] = a < 4 ? y[t[a]][d]
-                       : 0.5 * (y[t[TET_EDGE[a - 4][0]]][d] + y[t[TET_EDGE[a - 4][1]]][d]);
+        key[d] =
+            a < 4 ? y[t[a]][d] : 0.5 * (y[t[TET_EDGE[a - 4][0]]][d] + y[t[TET_EDGE[a - 4][1]]][d]);
         if (a < 4) P[a][d] = y[t[a]][d];
       }
       for (int c = 0; c < 3; ++c) {
@@ -782,8 +780,17 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
 
 } // namespace
 
-RunState remesh_fluid(const Mesh &mesh, const Space &space, const std::vector<PetscInt> &fluid_cells,
-                      const RunState &state, const std::string &msh_path, RemeshReport &rep) {
+RemeshOptions RemeshOptions::from_options() {
+  RemeshOptions o;
+  o.hmax = opt::nonnegative("ale_remesh_hmax", 0.0);
+  o.verbose = opt::integer("ale_remesh_verbose", 0) != 0;
+  o.test_fault = (int)opt::integer("ale_remesh_test_fault", 0);
+  return o;
+}
+
+RunState remesh_fluid(const Mesh &mesh, const Space &space,
+                      const std::vector<PetscInt> &fluid_cells, const RunState &state,
+                      const RemeshOptions &o, const std::string &msh_path, RemeshReport &rep) {
   MPI_Comm comm = PetscObjectComm((PetscObject)mesh.dm);
   int rank;
   MPI_Comm_rank(comm, &rank);
@@ -794,7 +801,7 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space, const std::vector<Pe
   std::string err;
   if (rank == 0) {
     try {
-      s = remesh_on_root(gm, g, state, msh_path, rep);
+      s = remesh_on_root(gm, g, state, o, msh_path, rep);
     } catch (InputError &e) {
       code = 2, err = e.what();
     } catch (RemeshError &e) {
@@ -817,11 +824,16 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space, const std::vector<Pe
   s.scene = state.scene;
   s.easy_run = state.easy_run;
   s.hemo_window = state.hemo_window;
-  double r[11] = {(double)rep.fluid_cells_before, (double)rep.fluid_cells_after,
-                  rep.skewness_before,            rep.skewness_after,
-                  rep.volume_before,              rep.volume_after,
-                  rep.kinetic_before,             rep.kinetic_after,
-                  rep.divergence_before,          rep.divergence_after,
+  double r[11] = {(double)rep.fluid_cells_before,
+                  (double)rep.fluid_cells_after,
+                  rep.skewness_before,
+                  rep.skewness_after,
+                  rep.volume_before,
+                  rep.volume_after,
+                  rep.kinetic_before,
+                  rep.kinetic_after,
+                  rep.divergence_before,
+                  rep.divergence_after,
                   rep.mesh_seconds};
   MPI_Bcast(r, 11, MPI_DOUBLE, 0, comm);
   rep.fluid_cells_before = std::lround(r[0]), rep.fluid_cells_after = std::lround(r[1]);

@@ -161,6 +161,11 @@ void load_mesh(MPI_Comm comm, Mesh &mesh) {
   load_mesh_file(comm, mesh, file);
 }
 
+void skip_scene_mesh_options() {
+  for (auto name : {"mesh_file", "mesh_geo", "mesh_h", "mesh_params", "mesh_cache_dir"})
+    if (opt::has(name)) opt::string(name, "");
+}
+
 void load_mesh_file(MPI_Comm comm, Mesh &mesh, const std::string &file) {
   if (!file_exists(file)) throw InputError("mesh file " + file + " not found");
   mesh.source = file;

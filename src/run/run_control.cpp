@@ -40,7 +40,8 @@ std::unique_ptr<Simulation> rebuild(std::unique_ptr<Simulation> old, const Mesh 
 }
 
 void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mesh> &mesh,
-            OutputNames &names, RunState &state, RemeshReport &report) {
+            OutputNames &names, RunState &state, const RemeshOptions &options,
+            RemeshReport &report) {
   const double t0 = MPI_Wtime();
   const long k = state.remeshes + 1;
   int rank;
@@ -53,7 +54,8 @@ void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mes
   report.step = state.step;
   report.time = state.time;
   if (!sim->fluid()) throw InputError("remeshing needs a fluid");
-  RunState next = remesh_fluid(*mesh, sim->space(), sim->fluid()->cells(), state, path, report);
+  RunState next =
+      remesh_fluid(*mesh, sim->space(), sim->fluid()->cells(), state, options, path, report);
   char *abs = rank == 0 ? realpath(path.c_str(), nullptr) : nullptr;
   next.mesh_file = abs ? abs : path;
   free(abs);

@@ -197,18 +197,19 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
   out.write_summary(j);
   // The cost line: what this run paid, per stage (max over ranks), per step and per iteration.
   const char *status = o.converged ? "done" : o.exit_code == 3 ? "FAILED" : "STOPPED";
-  PetscPrintf(comm_,
-              "fsi_app: %s: %ld steps, %.3g s/step; Newton %.2f/step (max %ld), Krylov %.1f/Newton "
-              "(max %ld/step); wall %.2f s = setup %.2f + Jacobian %.2f + residual %.2f + linear "
-              "solver %.2f + mesh motion %.2f + rebuild/remesh %.2f + output %.2f + other %.2f; %ld dofs "
-              "(velocity %ld, pressure %ld); peak memory %.0f MB/rank; results in %s\n",
-              status, steps_, per_step, steps_ ? double(newton_) / steps_ : 0.0, newton_max_,
-              newton_ ? double(krylov_) / newton_ : 0.0, krylov_max_, wall, setup_time_, jt, rt, ls,
-              mesh_motion_time_, rebuild_time_ + remesh_time, output_time_,
-              std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ - rebuild_time_ -
-                                remesh_time - output_time_),
-              (long)(space.n_velocity + space.n_pressure), (long)space.n_velocity,
-              (long)space.n_pressure, mem_max, out.dir().c_str());
+  PetscPrintf(
+      comm_,
+      "fsi_app: %s: %ld steps, %.3g s/step; Newton %.2f/step (max %ld), Krylov %.1f/Newton "
+      "(max %ld/step); wall %.2f s = setup %.2f + Jacobian %.2f + residual %.2f + linear "
+      "solver %.2f + mesh motion %.2f + rebuild/remesh %.2f + output %.2f + other %.2f; %ld dofs "
+      "(velocity %ld, pressure %ld); peak memory %.0f MB/rank; results in %s\n",
+      status, steps_, per_step, steps_ ? double(newton_) / steps_ : 0.0, newton_max_,
+      newton_ ? double(krylov_) / newton_ : 0.0, krylov_max_, wall, setup_time_, jt, rt, ls,
+      mesh_motion_time_, rebuild_time_ + remesh_time, output_time_,
+      std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ - rebuild_time_ -
+                        remesh_time - output_time_),
+      (long)(space.n_velocity + space.n_pressure), (long)space.n_velocity, (long)space.n_pressure,
+      mem_max, out.dir().c_str());
 }
 
 void RunReport::remeshed(const Output &out, const RemeshReport &r) {
@@ -218,9 +219,9 @@ void RunReport::remeshed(const Output &out, const RemeshReport &r) {
               "fluid cells %ld -> %ld, volume change %.1e, kinetic energy change %.2e, "
               "div/grad %.1e -> %.1e; %.2f s (gmsh %.2f s)\n",
               remeshes_.size(), r.step, r.time, r.skewness_before, r.skewness_after,
-              r.fluid_cells_before, r.fluid_cells_after,
-              r.volume_after / r.volume_before - 1, r.kinetic_after / r.kinetic_before - 1,
-              r.divergence_before, r.divergence_after, r.seconds, r.mesh_seconds);
+              r.fluid_cells_before, r.fluid_cells_after, r.volume_after / r.volume_before - 1,
+              r.kinetic_after / r.kinetic_before - 1, r.divergence_before, r.divergence_after,
+              r.seconds, r.mesh_seconds);
   std::string csv = "remesh,step,time,skewness_before,skewness_after,fluid_cells_before,"
                     "fluid_cells_after,volume_before,volume_after,kinetic_before,kinetic_after,"
                     "divergence_before,divergence_after,gmsh_seconds,seconds,peak_memory_mb\n";

@@ -32,13 +32,20 @@ struct RemeshError : SolveError {
   using SolveError::SolveError;
 };
 
+struct RemeshOptions {
+  double hmax = 0;      // -ale_remesh_hmax
+  bool verbose = false; // -ale_remesh_verbose
+  int test_fault = 0;   // -ale_remesh_test_fault 1: a boundary vertex thrown across the domain
+  static RemeshOptions from_options(); // read at start, so that a typo fails before step 1
+};
+
 struct RemeshReport {
   long step = 0;
   double time = 0;
   long fluid_cells_before = 0, fluid_cells_after = 0;
-  double skewness_before = 0, skewness_after = 0; // worst fluid cell
-  double volume_before = 0, volume_after = 0;     // fluid volume [m^3]
-  double kinetic_before = 0, kinetic_after = 0;   // int |v|^2 / 2 over the fluid [m^5/s^2]
+  double skewness_before = 0, skewness_after = 0;     // worst fluid cell
+  double volume_before = 0, volume_after = 0;         // fluid volume [m^3]
+  double kinetic_before = 0, kinetic_after = 0;       // int |v|^2 / 2 over the fluid [m^5/s^2]
   double divergence_before = 0, divergence_after = 0; // ||div v|| / ||grad v|| (L2, fluid)
   double mesh_seconds = 0, seconds = 0; // gmsh alone; the whole remesh (with the new run)
   double memory_mb = 0;                 // rank 0's peak resident memory after the remesh
@@ -49,7 +56,9 @@ struct RemeshReport {
 // atomically); return the state on the new mesh (data on rank 0).  Collective.  Throws
 // RemeshError if gmsh fails; InputError if the mesh cannot be remeshed (a fluid boundary face in
 // no physical group).
-RunState remesh_fluid(const Mesh &mesh, const Space &space, const std::vector<PetscInt> &fluid_cells,
-                      const RunState &state, const std::string &msh_path, RemeshReport &report);
+RunState remesh_fluid(const Mesh &mesh, const Space &space,
+                      const std::vector<PetscInt> &fluid_cells, const RunState &state,
+                      const RemeshOptions &options, const std::string &msh_path,
+                      RemeshReport &report);
 
 } // namespace fsi

@@ -30,6 +30,8 @@ std::string resolve_path(const std::string &path);
 
 // Read -mesh_file or -mesh_geo/-mesh_h/-mesh_params, build and distribute the DMPlex.
 void load_mesh(MPI_Comm comm, Mesh &mesh);
+// The scene's mesh options, read but not used (a run resumed on a remeshed mesh).
+void skip_scene_mesh_options();
 // Read a gmsh .msh file (e.g. a remeshed one), build and distribute the DMPlex.
 void load_mesh_file(MPI_Comm comm, Mesh &mesh, const std::string &file);
 

@@ -24,7 +24,8 @@ std::unique_ptr<Simulation> rebuild(std::unique_ptr<Simulation> old, const Mesh 
 // new mesh's file and count.  Throws RemeshError with `sim` and `mesh` untouched (the caller
 // can still checkpoint the last good state).
 void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mesh> &mesh,
-            OutputNames &names, RunState &state, RemeshReport &report);
+            OutputNames &names, RunState &state, const RemeshOptions &options,
+            RemeshReport &report);
 void install_stop_handlers();
 // The signal any rank received (0 if none), collective.
 int stop_requested(MPI_Comm comm);
