@@ -350,10 +350,146 @@ std::vector<std::vector<int>> boundary_surfaces(const std::vector<Tri> &tris,
   return out;
 }
 
+// Closest distance from p to triangle (a, b, c) and the closest point q.
+double point_triangle(const double *p, const double *a, const double *b, const double *c,
+                      double q[3]) {
+  double ab[3], ac[3], ap[3];
+  for (int d = 0; d < 3; ++d)
+    ab[d] = b[d] - a[d], ac[d] = c[d] - a[d], ap[d] = p[d] - a[d];
+  auto dot = [](const double *u, const double *v) {
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  };
+  // Barycentric coordinates of the projection, clamped to the triangle by a small search over
+  // its regions (Ericson, Real-Time Collision Detection, 5.1.5).
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  double u = 0, v = 0;
+  double bp[3], cp[3];
+  for (int d = 0; d < 3; ++d)
+    bp[d] = p[d] - b[d], cp[d] = p[d] - c[d];
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp), d6 = dot(ac, cp);
+  const double va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
+  if (d1 <= 0 && d2 <= 0) {
+    u = v = 0;
+  } else if (d3 >= 0 && d4 <= d3) {
+    u = 1, v = 0;
+  } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    u = d1 / (d1 - d3), v = 0;
+  } else if (d6 >= 0 && d5 <= d6) {
+    u = 0, v = 1;
+  } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    u = 0, v = d2 / (d2 - d6);
+  } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    u = 1 - w, v = w;
+  } else {
+    const double den = 1 / (va + vb + vc);
+    u = vb * den, v = vc * den;
+  }
+  double r = 0;
+  for (int d = 0; d < 3; ++d) {
+    q[d] = a[d] + u * ab[d] + v * ac[d];
+    r += (p[d] - q[d]) * (p[d] - q[d]);
+  }
+  return std::sqrt(r);
+}
+
+// Where the fluid boundary comes close to itself across the fluid (a thin gap between two
+// leaflets, or a leaflet and the wall), closer than its own triangles are large, a mesh with
+// only boundary vertices there would span the gap with one layer of slivers; there the size is
+// set to the gap over -ale_remesh_gap_cells, so that gmsh puts nodes inside the gap.  Returns
+// the gap vertices (position, size).
+std::vector<std::array<double, 4>> gap_sizes(const std::vector<std::array<double, 3>> &x,
+                                             const std::vector<Tri> &tris,
+                                             const std::vector<std::array<double, 3>> &inward,
+                                             double cells_across) {
+  const size_t nt = tris.size();
+  std::map<int, std::set<int>> nbr;
+  std::map<int, std::vector<int>> vtris;
+  for (size_t t = 0; t < nt; ++t)
+    for (int e = 0; e < 3; ++e) {
+      nbr[tris[t][e]].insert(tris[t][(e + 1) % 3]);
+      nbr[tris[t][e]].insert(tris[t][(e + 2) % 3]);
+      vtris[tris[t][e]].push_back((int)t);
+    }
+  // Triangles in bins (size: the largest edge), for the search within one edge length.
+  double hmax = 0;
+  std::array<double, 3> lo{1e300, 1e300, 1e300};
+  for (auto &[v, ns] : nbr)
+    for (int w : ns) {
+      double l = 0;
+      for (int d = 0; d < 3; ++d)
+        l += (x[v][d] - x[w][d]) * (x[v][d] - x[w][d]), lo[d] = std::min(lo[d], x[v][d]);
+      hmax = std::max(hmax, std::sqrt(l));
+    }
+  auto key = [&](const double *p, int d) { return (long)std::floor((p[d] - lo[d]) / hmax); };
+  std::map<std::array<long, 3>, std::vector<int>> bins;
+  for (size_t t = 0; t < nt; ++t) {
+    long b0[3], b1[3];
+    for (int d = 0; d < 3; ++d) {
+      b0[d] = b1[d] = key(x[tris[t][0]].data(), d);
+      for (int a = 1; a < 3; ++a)
+        b0[d] = std::min(b0[d], key(x[tris[t][a]].data(), d)),
+        b1[d] = std::max(b1[d], key(x[tris[t][a]].data(), d));
+    }
+    for (long i = b0[0]; i <= b1[0]; ++i)
+      for (long j = b0[1]; j <= b1[1]; ++j)
+        for (long k = b0[2]; k <= b1[2]; ++k)
+          bins[{i, j, k}].push_back((int)t);
+  }
+  std::vector<std::array<double, 4>> gaps;
+  for (auto &[v, ns] : nbr) {
+    double h = 0, n[3] = {0, 0, 0};
+    for (int w : ns) {
+      double l = 0;
+      for (int d = 0; d < 3; ++d)
+        l += (x[v][d] - x[w][d]) * (x[v][d] - x[w][d]);
+      h += std::sqrt(l) / ns.size();
+    }
+    for (int t : vtris[v])
+      for (int d = 0; d < 3; ++d)
+        n[d] += inward[t][d];
+    std::set<int> ring = ns; // two rings of neighbours: not across a gap
+    for (int w : ns)
+      ring.insert(nbr[w].begin(), nbr[w].end());
+    ring.insert(v);
+    double gap = 1e300;
+    const double *p = x[v].data();
+    long c[3];
+    for (int d = 0; d < 3; ++d)
+      c[d] = key(p, d);
+    std::set<int> seen;
+    for (long i = c[0] - 1; i <= c[0] + 1; ++i)
+      for (long j = c[1] - 1; j <= c[1] + 1; ++j)
+        for (long k = c[2] - 1; k <= c[2] + 1; ++k) {
+          auto it = bins.find({i, j, k});
+          if (it == bins.end()) continue;
+          for (int t : it->second) {
+            if (!seen.insert(t).second) continue;
+            if (ring.count(tris[t][0]) || ring.count(tris[t][1]) || ring.count(tris[t][2]))
+              continue;
+            double q[3];
+            const double r = point_triangle(p, x[tris[t][0]].data(), x[tris[t][1]].data(),
+                                            x[tris[t][2]].data(), q);
+            if (r >= gap || r <= 0) continue;
+            // Across the fluid: q lies on v's fluid side and t faces v.
+            double a = 0, b = 0;
+            for (int d = 0; d < 3; ++d)
+              a += (q[d] - p[d]) * n[d], b += (p[d] - q[d]) * inward[t][d];
+            if (a > 0 && b > 0) gap = r;
+          }
+        }
+    if (gap / cells_across < h) gaps.push_back({p[0], p[1], p[2], gap / cells_across});
+  }
+  return gaps;
+}
+
 // gmsh: the fluid volume inside the given boundary triangles (node k at x[k], tag k + 1).  Returns
 // the new tetrahedra in node indices; new nodes are appended to x.
-std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::vector<Tri> &tris,
-                             const std::vector<double> &mask, const RemeshOptions &o) {
+// gmsh: the volume inside the boundary triangles, with the gap sizes.
+std::vector<Tet> gmsh_volume(std::vector<std::array<double, 3>> &x, const std::vector<Tri> &tris,
+                             const std::vector<double> &mask,
+                             const std::vector<std::array<double, 4>> &gaps,
+                             const RemeshOptions &o) {
   const double hmax = o.hmax;
   gmsh::initialize(0, nullptr, false);
   std::vector<Tet> tets;
@@ -384,31 +520,41 @@ std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::v
       surface_tags.push_back(tag);
     }
     gmsh::model::addDiscreteEntity(3, 1, surface_tags);
+    if (!gaps.empty()) // sizes grow away from a gap at 1/2 per unit distance
+      gmsh::model::mesh::setSizeCallback([&gaps](int, int, double px, double py, double pz) {
+        double s = 1e22;
+        for (auto &g : gaps) {
+          const double r = std::sqrt((px - g[0]) * (px - g[0]) + (py - g[1]) * (py - g[1]) +
+                                     (pz - g[2]) * (pz - g[2]));
+          s = std::min(s, g[3] + 0.5 * r);
+        }
+        return s;
+      });
     gmsh::model::mesh::createGeometry({{3, 1}});
     gmsh::model::mesh::generate(3);
-    // Nodes come back renumbered: tell the kept ones by their (exact) coordinates.
+    // Nodes come back renumbered: tell the kept ones by their (exact) coordinates; new nodes
+    // are those of the new cells.
+    std::vector<std::size_t> etags, enodes;
+    gmsh::model::mesh::getElementsByType(4, etags, enodes, 1);
     std::vector<std::size_t> ntags;
     std::vector<double> coords, param;
     gmsh::model::mesh::getNodes(ntags, coords, param, -1, -1, false, false);
-    std::map<std::array<double, 3>, int> old;
+    std::map<std::size_t, std::array<double, 3>> pos;
+    for (size_t i = 0; i < ntags.size(); ++i)
+      pos[ntags[i]] = {coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]};
+    std::map<std::array<double, 3>, int> known;
     for (size_t v = 0; v < x.size(); ++v)
-      if (added[v]) old[x[v]] = (int)v;
-    std::map<std::size_t, int> index;
-    for (size_t i = 0; i < ntags.size(); ++i) {
-      const std::array<double, 3> p{coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]};
-      auto it = old.find(p);
-      if (it != old.end()) {
-        index[ntags[i]] = it->second;
-      } else {
-        index[ntags[i]] = (int)x.size();
-        x.push_back(p);
-      }
-    }
-    std::vector<std::size_t> etags, enodes;
-    gmsh::model::mesh::getElementsByType(4, etags, enodes, 1);
+      if (added[v]) known[x[v]] = (int)v;
+    auto index = [&](std::size_t tag) {
+      const auto &p = pos.at(tag);
+      auto it = known.find(p);
+      if (it != known.end()) return it->second;
+      x.push_back(p);
+      return known[p] = (int)x.size() - 1;
+    };
     for (size_t k = 0; k < etags.size(); ++k)
-      tets.push_back({index.at(enodes[4 * k]), index.at(enodes[4 * k + 1]),
-                      index.at(enodes[4 * k + 2]), index.at(enodes[4 * k + 3])});
+      tets.push_back({index(enodes[4 * k]), index(enodes[4 * k + 1]), index(enodes[4 * k + 2]),
+                      index(enodes[4 * k + 3])});
   } catch (...) { // gmsh throws std::string as well as std::exception
     std::string err;
     try {
@@ -422,6 +568,25 @@ std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::v
   gmsh::finalize();
   if (tets.empty()) throw RemeshError("gmsh returned no fluid cells for the deformed boundary");
   return tets;
+}
+
+double skewness_of(const std::vector<std::array<double, 3>> &x, const Tet &t) {
+  double P[4][3];
+  for (int a = 0; a < 4; ++a)
+    for (int d = 0; d < 3; ++d)
+      P[a][d] = x[t[a]][d];
+  return tet_skewness(P);
+}
+
+// The fluid volume inside the boundary triangles (node k at x[k], new nodes appended to x).
+std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::vector<Tri> &tris,
+                             const std::vector<double> &mask,
+                             const std::vector<std::array<double, 3>> &inward,
+                             const RemeshOptions &o, long &gap_vertices) {
+  const auto gaps = o.gap_cells > 0 ? gap_sizes(x, tris, inward, o.gap_cells)
+                                    : std::vector<std::array<double, 4>>();
+  gap_vertices = (long)gaps.size();
+  return gmsh_volume(x, tris, mask, gaps, o);
 }
 
 // A gmsh 2.2 ASCII mesh (exact coordinates with 17 digits), written atomically.
@@ -467,14 +632,6 @@ void write_msh(const std::string &path, const std::vector<std::array<double, 3>>
     throw InputError("cannot write the remeshed mesh " + path + " (disk full?)");
 }
 
-double skewness_of(const std::vector<std::array<double, 3>> &x, const Tet &t) {
-  double P[4][3];
-  for (int a = 0; a < 4; ++a)
-    for (int d = 0; d < 3; ++d)
-      P[a][d] = x[t[a]][d];
-  return tet_skewness(P);
-}
-
 // Rank 0: the remesh proper.  Returns the new state.
 RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old,
                         const RemeshOptions &o, const std::string &msh_path, RemeshReport &rep) {
@@ -512,7 +669,7 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
     face_mask[sorted(v[0], v[1], v[2])] = gm.faces.values[f];
   }
   // The fluid boundary: faces of fluid cells not shared with another fluid cell.
-  std::map<Tri, int> count;
+  std::map<Tri, int> count, opposite;
   std::vector<Tet> old_fluid;
   double fluid_mask = -1;
   static const int FACE[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
@@ -522,8 +679,11 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
     if (fluid_mask >= 0 && cmask[k] != fluid_mask)
       throw InputError("remeshing needs the fluid in one set of physical volumes");
     fluid_mask = cmask[k];
-    for (auto &f : FACE)
-      ++count[sorted(cells[k][f[0]], cells[k][f[1]], cells[k][f[2]])];
+    for (int i = 0; i < 4; ++i) {
+      const Tri t = sorted(cells[k][FACE[i][0]], cells[k][FACE[i][1]], cells[k][FACE[i][2]]);
+      ++count[t];
+      opposite[t] = cells[k][i];
+    }
   }
   std::vector<Tri> boundary;
   std::vector<double> bmask;
@@ -561,8 +721,18 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
     }
   const size_t n_kept = y.size();
   std::vector<Tri> btris;
-  for (auto &t : boundary)
+  std::vector<std::array<double, 3>> inward; // unit normal into the fluid per boundary triangle
+  for (auto &t : boundary) {
     btris.push_back({new_index[t[0]], new_index[t[1]], new_index[t[2]]});
+    double e1[3], e2[3], n[3], o = 0, len = 0;
+    for (int d = 0; d < 3; ++d)
+      e1[d] = x[t[1]][d] - x[t[0]][d], e2[d] = x[t[2]][d] - x[t[0]][d];
+    cross(e1, e2, n);
+    for (int d = 0; d < 3; ++d)
+      o += n[d] * (x[opposite[t]][d] - x[t[0]][d]), len += n[d] * n[d];
+    const double sgn = (o > 0 ? 1.0 : -1.0) / std::sqrt(len);
+    inward.push_back({sgn * n[0], sgn * n[1], sgn * n[2]});
+  }
   if (o.test_fault == 1 && !btris.empty()) {
     // A test of the failure path: one boundary vertex thrown across the domain.
     auto &p = y[btris[btris.size() / 2][0]];
@@ -571,7 +741,7 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
   }
 
   const double m0 = MPI_Wtime();
-  std::vector<Tet> new_fluid = mesh_volume(y, btris, bmask, o);
+  std::vector<Tet> new_fluid = mesh_volume(y, btris, bmask, inward, o, rep.gap_vertices);
   rep.mesh_seconds = MPI_Wtime() - m0;
 
   // The new fluid cells' boundary must be the old boundary, triangle for triangle.
@@ -785,6 +955,7 @@ RemeshOptions RemeshOptions::from_options() {
   o.hmax = opt::nonnegative("ale_remesh_hmax", 0.0);
   o.verbose = opt::integer("ale_remesh_verbose", 0) != 0;
   o.test_fault = (int)opt::integer("ale_remesh_test_fault", 0);
+  o.gap_cells = opt::nonnegative("ale_remesh_gap_cells", 2.0);
   return o;
 }
 
@@ -824,6 +995,7 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space,
   s.scene = state.scene;
   s.easy_run = state.easy_run;
   s.hemo_window = state.hemo_window;
+  MPI_Bcast(&rep.gap_vertices, 1, MPI_LONG, 0, comm);
   double r[11] = {(double)rep.fluid_cells_before,
                   (double)rep.fluid_cells_after,
                   rep.skewness_before,

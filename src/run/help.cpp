@@ -94,6 +94,8 @@ const std::vector<Section> &sections() {
          "remesh when a fluid cell is squeezed below this fraction of its volume"},
         {"ale_remesh_hmax", "0 (from the boundary)", "m", "largest cell of a new fluid mesh"},
         {"ale_remesh_every", "0", "steps", "also remesh after every N steps (tests, studies)"},
+        {"ale_remesh_gap_cells", "2", "-",
+         "cells across a fluid gap thinner than its boundary triangles (0: no gap sizing)"},
         {"ale_remesh_verbose", "0", "-", "1: show gmsh's messages while remeshing"},
         {"ale_remesh_test_fault", "0", "-", "1: corrupt the boundary given to gmsh (tests)"},
         {"ale_ksp_*, ale_pc_*", "cg, gamg", "-", "the mesh-motion linear solver"}}},

@@ -87,7 +87,8 @@ void Simulation::build_physics(const Mesh &mesh) {
     system_->add_module(std::move(s));
   }
   const std::vector<PetscInt> *fluid_cells = fluid_ ? &fluid_->cells() : nullptr;
-  ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells, material_X_), fluid_cells);
+  ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells, material_X_),
+                               fluid_cells);
   const std::string iface = opt::string("ale_interface", "");
   if (!iface.empty()) {
     if (!fluid_ || !ale_->moving())

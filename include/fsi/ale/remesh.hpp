@@ -6,7 +6,10 @@
 // untouched.  The new mesh (new fluid cells + the old solid cells, the same physical groups) is
 // written as a .msh and read like the first one, so it is distributed the same way and a
 // checkpoint can name it.  Sizes come from the boundary triangles (gmsh extends them inwards),
-// capped by -ale_remesh_hmax when given.
+// capped by -ale_remesh_hmax when given, and shrink where the boundary faces itself across a
+// gap thinner than its triangles (-ale_remesh_gap_cells cells across, default 2; 0 = off):
+// without nodes inside, such a gap (between two leaflets near a commissure) holds one layer of
+// slivers that no new mesh of the same boundary avoids.
 //
 // State transfer (remesh_state): nodes that survive (solid nodes, boundary vertices and edges)
 // keep their values exactly; new fluid nodes get the old fields evaluated in the old fluid mesh
@@ -36,6 +39,7 @@ struct RemeshOptions {
   double hmax = 0;      // -ale_remesh_hmax
   bool verbose = false; // -ale_remesh_verbose
   int test_fault = 0;   // -ale_remesh_test_fault 1: a boundary vertex thrown across the domain
+  double gap_cells = 2; // -ale_remesh_gap_cells: cells across a gap thinner than its triangles
   static RemeshOptions from_options(); // read at start, so that a typo fails before step 1
 };
 
@@ -49,6 +53,7 @@ struct RemeshReport {
   double divergence_before = 0, divergence_after = 0; // ||div v|| / ||grad v|| (L2, fluid)
   double mesh_seconds = 0, seconds = 0; // gmsh alone; the whole remesh (with the new run)
   double memory_mb = 0;                 // rank 0's peak resident memory after the remesh
+  long gap_vertices = 0; // boundary vertices facing a gap thinner than their triangles
 };
 
 // Mesh the fluid again from the boundary of `mesh` at the positions of `state` (the state at the
