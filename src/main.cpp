@@ -46,6 +46,7 @@ int run(MPI_Comm comm) {
   const RemeshOptions remesh_options = RemeshOptions::from_options();
   if (remesh_every < 0) throw InputError("option -ale_remesh_every must be >= 0");
   auto sim = std::make_unique<Simulation>(*mesh, scene, names, resume.get());
+  std::vector<std::string> field_parts{names.fields}; // one per mesh the run was on
   StepControl control = StepControl::from_options(scene.time.dt);
   if (resume) {
     control.resume(resume->dt, resume->easy_run);
@@ -97,6 +98,7 @@ int run(MPI_Comm comm) {
         report.absorb(*sim);
         RunState st = state();
         remesh(comm, sim, mesh, names, st, remesh_options, r);
+        field_parts.push_back(names.fields);
         mesh_file = st.mesh_file;
         remeshes = st.remeshes;
         report.remeshed(out, r);
@@ -128,6 +130,7 @@ int run(MPI_Comm comm) {
         const double r0 = MPI_Wtime();
         report.absorb(*sim);
         sim = rebuild(std::move(sim), *mesh, names, state());
+        field_parts.push_back(names.fields);
         report.rebuilt(MPI_Wtime() - r0);
       }
       if (const int sig = stop_requested(comm)) {
@@ -152,6 +155,10 @@ int run(MPI_Comm comm) {
     write_checkpoint(); // the end state, to extend the run
   out.close_monitor();
   sim->close_outputs();
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  if (names.fields_every > 0 && field_parts.size() > 1 && rank == 0)
+    merge_xdmf(out.dir(), field_parts, field_parts[0] + "_all");
   report.absorb(*sim);
   report.write(out, *mesh, *sim, control, outcome, MPI_Wtime() - t_start, restart, first_step,
                first_time, checkpoints > 0 ? checkpoint_path : "");

@@ -2,6 +2,7 @@
 
 #include <fstream>
 #include <petscviewerhdf5.h>
+#include <sstream>
 
 namespace fsi {
 
@@ -206,6 +207,29 @@ void FieldWriter::close() {
     f << "   </Grid>\n";
   }
   f << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  f.close();
+  std::rename(tmp.c_str(), path.c_str());
+}
+
+void merge_xdmf(const std::string &dir, const std::vector<std::string> &parts,
+                const std::string &name) {
+  const std::string head = "GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  const std::string tail = "  </Grid>\n </Domain>";
+  std::string grids;
+  for (auto &p : parts) {
+    std::ifstream in(dir + "/" + p + ".xdmf");
+    if (!in) continue;
+    std::stringstream ss;
+    ss << in.rdbuf();
+    const std::string x = ss.str();
+    const size_t a = x.find(head), b = x.rfind(tail);
+    if (a == std::string::npos || b == std::string::npos || b < a) continue;
+    grids += x.substr(a + head.size(), b - a - head.size());
+  }
+  const std::string path = dir + "/" + name + ".xdmf", tmp = path + ".tmp";
+  std::ofstream f(tmp);
+  f << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"fields\" " << head << grids << tail << "\n</Xdmf>\n";
   f.close();
   std::rename(tmp.c_str(), path.c_str());
 }

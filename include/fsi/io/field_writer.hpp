@@ -52,4 +52,10 @@ private:
   std::vector<std::pair<long, double>> steps_;
 };
 
+// One XDMF for a run whose mesh changed (rebuilds, remeshes): the time steps of every part
+// (DIR/<part>.xdmf, each on its own mesh) in one temporal collection DIR/<name>.xdmf, so that
+// ParaView plays the whole run.  Rank 0; parts without a file are skipped.
+void merge_xdmf(const std::string &dir, const std::vector<std::string> &parts,
+                const std::string &name);
+
 } // namespace fsi
