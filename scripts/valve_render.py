@@ -14,7 +14,9 @@ from paraview.simple import (ColorBy, CreateRenderView, GetColorTransferFunction
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
 
 d = sys.argv[1]
-reader = Xdmf3ReaderS(FileName=[os.path.join(d, "fields.xdmf")])
+# A run that remeshed has its fields on several meshes, all listed in fields_all.xdmf.
+fields = "fields_all.xdmf" if os.path.exists(os.path.join(d, "fields_all.xdmf")) else "fields.xdmf"
+reader = Xdmf3ReaderS(FileName=[os.path.join(d, fields)])
 times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
 wanted = [float(t) for t in sys.argv[2:]] or [times[-1]]
 reader.UpdatePipeline(times[0])  # the arrays are known after a first update
@@ -67,19 +69,23 @@ def camera(v, pos, up, focal=(0, 0, 0.008), scale=0.016):
     v.CameraParallelScale = scale
 
 
-leaflets = WarpByVector(Input=region(0.5, 1.5), Vectors=["POINTS", "displacement"])
+# The geometry is each mesh's reference; the mesh displacement moves it to the current one (after
+# a remesh the reference is where the leaflets were then, not their material reference).
+leaflets = WarpByVector(Input=region(0.5, 1.5), Vectors=["POINTS", "mesh_displacement"])
 fluid = WarpByVector(Input=region(-0.5, 0.5), Vectors=["POINTS", "mesh_displacement"])
 plane = Slice(Input=fluid)
 plane.SliceType = "Plane"
 plane.SliceType.Origin = [0, 0, 0]
 plane.SliceType.Normal = [1, 0, 0]
 
-# Instantaneous wall shear (hemo.xdmf lists the steps; hemo.h5 holds them).
+# Instantaneous wall shear (hemo.xdmf lists the steps, hemo.h5 holds them; after remeshes each
+# mesh has its own remeshK_hemo.xdmf/.h5).
 wss_steps = []
-hx = os.path.join(d, "hemo.xdmf")
-if os.path.exists(hx):
-    wss_steps = [(int(n), float(t)) for n, t in
-                 re.findall(r'<Grid Name="interface_(\d+)"><Time Value="([^"]+)"/>', open(hx).read())]
+for hx in sorted(f for f in os.listdir(d) if f.endswith("hemo.xdmf")):
+    base = hx[:-len(".xdmf")]
+    wss_steps += [(int(n), float(t), base) for n, t in
+                  re.findall(r'<Grid Name="interface_(\d+)"><Time Value="([^"]+)"/>',
+                             open(os.path.join(d, hx)).read())]
 
 for want in wanted:
     t = min(times, key=lambda x: abs(x - want))
@@ -106,8 +112,8 @@ for want in wanted:
     SaveScreenshot(os.path.join(d, f"velocity_{tag}.png"), v, ImageResolution=[1100, 800])
 
     if wss_steps:
-        n, tw = min(wss_steps, key=lambda s: abs(s[1] - t))
-        with h5py.File(os.path.join(d, "hemo.h5"), "r") as h:
+        n, tw, base = min(wss_steps, key=lambda s: abs(s[1] - t))
+        with h5py.File(os.path.join(d, base + ".h5"), "r") as h:
             g = h[f"interface/step_{n}"]
             pts = np.asarray(g["points"]).reshape(-1, 3)
             mag = np.asarray(g["wss_magnitude"]).ravel()
