@@ -11,6 +11,7 @@
 #include "fsi/solver/pcd.hpp"
 
 #include <memory>
+#include <unistd.h>
 
 using namespace fsi;
 
@@ -37,6 +38,16 @@ int run(MPI_Comm comm) {
   if (resume && !resume->mesh_file.empty()) { // a state after a remesh lives on that mesh
     mesh_file = resume->mesh_file;
     remeshes = resume->remeshes;
+    if (access(mesh_file.c_str(), R_OK) != 0) { // moved with its run: next to the checkpoint
+      const size_t slash = restart.find_last_of('/'), base = mesh_file.find_last_of('/');
+      const std::string near = (slash == std::string::npos ? "." : restart.substr(0, slash)) +
+                               "/remesh/" + mesh_file.substr(base + 1);
+      if (access(near.c_str(), R_OK) != 0)
+        throw InputError("the checkpoint " + restart + " lives on the remeshed mesh " + mesh_file +
+                         ", which is missing (also as " + near +
+                         "): keep the run's remesh/ folder beside its checkpoint");
+      mesh_file = near;
+    }
     load_mesh_file(comm, *mesh, mesh_file);
     skip_scene_mesh_options();
   } else {

@@ -13,11 +13,13 @@ smoothing alone inverts cells within two steps).
    another mesh of the same size).
 3. Restart across a remesh (the state names its remeshed mesh file): the pushed block, 6 steps +
    checkpoint + 6 steps = 12 uninterrupted steps; the mild case remeshed at step 3 and
-   checkpointed at step 4, resumed 1 -> 2 and 2 -> 1 ranks = the uninterrupted run.
+   checkpointed at step 4, resumed 1 -> 2 and 2 -> 1 ranks = the uninterrupted run; a run folder
+   moved elsewhere resumes on the remeshed mesh beside its checkpoint, and without it says so.
 4. A boundary gmsh cannot mesh (-ale_remesh_test_fault 1 throws one boundary vertex across the
    box): one clear line, exit 3, the last converged state in checkpoint.h5, no summary claiming
    success."""
 import glob
+import shutil
 import os
 from fsitest import check, finish, run, scene
 
@@ -116,6 +118,14 @@ if rb.code == 0 and ra.code == 0:
     if rc.code == 0:
         d = compare_runs(ra, rc, 6)
         check(d < 1e-10, f"resumed pushed block = uninterrupted run ({d:.1e})")
+    # The run's folder moved: the remeshed mesh is found beside the checkpoint; without it, one line.
+    moved = rb.dir + "_moved"
+    os.rename(rb.dir, moved)
+    rm_ = run(BLOCK, extra=["-ts_max_time", "0.035", "-restart", os.path.join(moved, "checkpoint.h5")])
+    check(rm_.code == 0, "a moved run resumes on the remeshed mesh beside its checkpoint")
+    shutil.rmtree(os.path.join(moved, "remesh"))
+    rm_ = run(BLOCK, extra=["-ts_max_time", "0.035", "-restart", os.path.join(moved, "checkpoint.h5")])
+    check(rm_.code == 2 and "is missing" in rm_.out, "a missing remeshed mesh: exit 2, one line")
 every3 = mild + ["-ale_remesh_every", "3"]
 for np_a, np_b in ((1, 2), (2, 1)):
     full = run(BLOCK, np=np_a, extra=every3)
