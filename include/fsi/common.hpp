@@ -33,6 +33,9 @@ struct PetscFailure : std::runtime_error {
 
 [[noreturn]] void throw_petsc(PetscErrorCode ierr, const char *file, int line);
 
+// This process's peak resident memory so far [MB].
+double peak_memory_mb();
+
 // Sum of n over the lower ranks of comm: where this rank's entries start in a distributed
 // numbering (0 on rank 0).
 inline PetscInt rank_offset(MPI_Comm comm, PetscInt n) {

@@ -12,17 +12,10 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
-#include <sys/resource.h>
 
 namespace fsi {
 namespace remeshing {
 namespace {
-
-double peak_memory_mb() {
-  struct rusage ru;
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_maxrss / 1024.0;
-}
 
 // Rank 0: the remesh proper.  Returns the new state.
 RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old,

@@ -2,15 +2,8 @@
 #include "fsi/run/stages.hpp"
 
 #include <algorithm>
-#include <sys/resource.h>
 
 namespace fsi {
-
-static double peak_memory_mb() {
-  struct rusage ru;
-  getrusage(RUSAGE_SELF, &ru);
-  return ru.ru_maxrss / 1024.0;
-}
 
 static double max_over_ranks(MPI_Comm comm, double v) {
   double m;

@@ -2,8 +2,15 @@
 
 #include <cstdlib>
 #include <sstream>
+#include <sys/resource.h>
 
 namespace fsi {
+
+double peak_memory_mb() {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;
+}
 
 // PETSc's own words: the error class and the message of the call that failed.
 void throw_petsc(PetscErrorCode ierr, const char *file, int line) {
