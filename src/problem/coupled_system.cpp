@@ -62,6 +62,15 @@ void CoupledSystem::build_pattern() {
     for (size_t e = 0; n > 0 && e < dofs.size() / n; ++e)
       FSI_CALL(
           MatSetValuesLocal(pre, n, &dofs[n * e], n, &dofs[n * e], zeros.data(), INSERT_VALUES));
+    std::vector<PetscInt> pairs;
+    m->global_couplings(pairs);
+    for (size_t k = 0; k + 1 < pairs.size(); k += 2)
+      for (int s = 0; s < 2; ++s) {
+        const PetscInt r0 = pairs[k + s], c0 = pairs[k + 1 - s];
+        if (r0 < space_.rstart || r0 >= space_.rstart + space_.n_owned) continue;
+        const PetscInt rows[3] = {r0, r0 + 1, r0 + 2}, cols[3] = {c0, c0 + 1, c0 + 2};
+        FSI_CALL(MatSetValues(pre, 3, rows, 3, cols, zeros.data(), INSERT_VALUES));
+      }
   }
   for (PetscInt r = space_.rstart; r < space_.rstart + space_.n_owned; ++r)
     FSI_CALL(MatSetValue(pre, r, r, 0.0, INSERT_VALUES));
@@ -120,18 +129,30 @@ void CoupledSystem::step_size_changed() {
 
 SolveStats CoupledSystem::solve(Vec U) {
   bool changed = pattern_every_ > 0 && ++solves_ % pattern_every_ == 0;
-  for (auto &m : modules_)
-    changed = changed || m->couplings_changed();
-  if (changed) { // before the solve: a new matrix and a solver set up for it
-    build_pattern();
-    create_solver();
-  }
   // Dirichlet values into the initial guess.
   PetscScalar *u;
   FSI_CALL(VecGetArray(U, &u));
   for (auto &[dof, val] : bc_values_)
     if (space_.owned(dof)) u[space_.local_to_global[dof] - space_.rstart] = val;
   FSI_CALL(VecRestoreArray(U, &u));
+  {
+    // Modules that look at the configuration (contact) see the initial guess, then say
+    // whether their couplings changed.
+    space_.to_local(U, Uloc_);
+    const PetscScalar *ul;
+    FSI_CALL(VecGetArrayRead(Uloc_, &ul));
+    ctx_.U = ul;
+    for (auto &m : modules_)
+      m->begin_solve(ctx_);
+    ctx_.U = nullptr;
+    FSI_CALL(VecRestoreArrayRead(Uloc_, &ul));
+  }
+  for (auto &m : modules_)
+    changed = changed || m->couplings_changed();
+  if (changed) { // before the solve: a new matrix and a solver set up for it
+    build_pattern();
+    create_solver();
+  }
 
   FSI_CALL(PetscLogStagePush(Stages::get().solve));
   inverted_ = false;
@@ -157,6 +178,8 @@ bool CoupledSystem::residual(Vec U, Vec F) {
   FSI_CALL(VecGetArrayRead(Uloc_, &u));
   FSI_CALL(VecGetArray(Floc_, &f));
   ctx_.U = u;
+  for (auto &m : modules_)
+    m->prepare(ctx_);
   bool valid = true;
   try {
     for (auto &m : modules_)
@@ -193,6 +216,8 @@ void CoupledSystem::jacobian(Vec U, Mat J) {
   const PetscScalar *u;
   FSI_CALL(VecGetArrayRead(Uloc_, &u));
   ctx_.U = u;
+  for (auto &m : modules_)
+    m->prepare(ctx_);
   for (auto &m : modules_)
     m->add_jacobian(ctx_, J);
   bcs_->add_jacobian(ctx_, J);

@@ -18,12 +18,23 @@ Scene Scene::from_options() {
       s.fluid = true;
     else if (p == "solid")
       s.solid = true;
+    else if (p == "contact")
+      s.contact = true;
+    else if (p == "gap_seal")
+      s.gap_seal = true;
     else if (p == "ale")
       throw InputError("-physics ale is not a physics: the mesh motion is chosen by -ale_motion "
                        "none|prescribed|laplace");
     else
-      throw InputError("-physics has unknown value '" + p + "'; use: fluid, solid");
+      throw InputError("-physics has unknown value '" + p +
+                       "'; use: fluid, solid, contact, gap_seal");
   }
+  if (s.contact && !s.solid)
+    throw InputError(
+        "-physics contact needs the solid: -physics solid,contact (or fluid,solid,contact)");
+  if (s.gap_seal && !(s.fluid && s.solid))
+    throw InputError(
+        "-physics gap_seal needs the fluid and the solid: -physics fluid,solid,contact,gap_seal");
   s.time = TimeParams::from_options();
   return s;
 }
@@ -85,6 +96,30 @@ void Simulation::build_physics(const Mesh &mesh) {
                                            make_material(), exact_solid_.get());
     solid_ = s.get();
     system_->add_module(std::move(s));
+  }
+  if (scene_.contact || scene_.gap_seal) {
+    // Leaflets touching: a penalty between the pieces of the solid's surface (contact.hpp) and
+    // a resistance that seals the fluid gap between them (gap_seal.hpp).
+    const ContactParams cp = ContactParams::from_options();
+    mesh.require_groups({cp.surface}, "the contact surface (-contact_surface)");
+    auto surface =
+        std::make_shared<ContactSurface>(space_, mesh, cp.surface, solid_->cells(), material_X_);
+    if (surface->n_components() < 2)
+      throw InputError("the contact surface '" + cp.surface + "' has " +
+                       std::to_string(surface->n_components()) +
+                       " connected piece(s): contact acts between pieces (no self-contact), so "
+                       "it needs at least 2; check -contact_surface");
+    if (scene_.contact) {
+      auto c = std::make_unique<ContactModule>(surface, cp);
+      contact_ = c.get();
+      system_->add_module(std::move(c));
+    }
+    if (scene_.gap_seal) {
+      auto g = std::make_unique<GapSeal>(space_, fluid_->cells(), surface,
+                                         GapSealParams::from_options(cp.offset));
+      seal_ = g.get();
+      system_->add_module(std::move(g));
+    }
   }
   const std::vector<PetscInt> *fluid_cells = fluid_ ? &fluid_->cells() : nullptr;
   ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells, material_X_),
@@ -310,6 +345,12 @@ std::vector<std::string> Simulation::monitor_columns() const {
   const auto valve_columns = valve_.columns();
   columns.insert(columns.end(), valve_columns.begin(), valve_columns.end());
   columns.insert(columns.end(), wss_columns.begin(), wss_columns.end());
+  if (contact_)
+    for (auto c : {"contact_pairs", "contact_max_penetration", "contact_force"})
+      columns.push_back(c);
+  if (seal_)
+    for (auto c : {"seal_cells", "seal_max_alpha"})
+      columns.push_back(c);
   if (ale_->moving())
     for (auto c : {"mesh_min_jacobian", "mesh_max_skewness", "mesh_min_jacobian_x",
                    "mesh_min_jacobian_y", "mesh_min_jacobian_z", "geometry_iterations"})
@@ -324,6 +365,11 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   const auto vm = valve_.evaluate(*this);
   row.insert(row.end(), vm.begin(), vm.end());
   row.insert(row.end(), wss_.values().begin(), wss_.values().end());
+  if (contact_)
+    row.insert(row.end(), {(double)contact_->stats().active_pairs,
+                           contact_->stats().max_penetration, contact_->stats().force});
+  if (seal_)
+    row.insert(row.end(), {(double)seal_->stats().sealing_cells, seal_->stats().max_alpha});
   if (ale_->moving())
     row.insert(row.end(), {ale_->quality().min_jacobian, ale_->quality().max_skewness,
                            ale_->quality().where[0], ale_->quality().where[1],

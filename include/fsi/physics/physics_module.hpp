@@ -21,8 +21,16 @@ struct PhysicsModule {
   // True when element_dofs() changed since the pattern was last built (e.g. contact pairs found
   // on the deformed configuration): the system then rebuilds its matrix before the next solve.
   virtual bool couplings_changed() const { return false; }
-  // Called after the pattern was built from element_dofs().
+  // Called after the pattern was built from element_dofs() and global_couplings().
   virtual void pattern_built() {}
+  // Velocity-node pairs (global dof of the x component, two per pair) coupled beyond the
+  // elements, possibly across ranks (contact): 3x3 blocks both ways in the pattern.
+  virtual void global_couplings(std::vector<PetscInt> &pairs) const { pairs.clear(); }
+  // Collective, on every rank before each residual and Jacobian: gather what spans ranks.
+  virtual void prepare(const StepContext &) {}
+  // Collective, at the start of each nonlinear solve (ctx.U = the initial guess), before
+  // couplings_changed() is asked.
+  virtual void begin_solve(const StepContext &) {}
 };
 
 } // namespace fsi

@@ -14,7 +14,9 @@
 #include "fsi/boundary/boundaries.hpp"
 #include "fsi/io/checkpoint.hpp"
 #include "fsi/io/field_writer.hpp"
+#include "fsi/physics/contact.hpp"
 #include "fsi/physics/fluid.hpp"
+#include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/solid.hpp"
 #include "fsi/post/monitors.hpp"
 #include "fsi/post/solid_monitors.hpp"
@@ -32,7 +34,7 @@ namespace fsi {
 struct Scene {
   std::string name;
   std::vector<std::string> physics;
-  bool fluid = false, solid = false;
+  bool fluid = false, solid = false, contact = false, gap_seal = false;
   TimeParams time;
   std::string tag() const; // what a state must match: physics and time scheme
   static Scene from_options();
@@ -109,6 +111,8 @@ private:
   std::unique_ptr<ExactSolid> exact_solid_;
   const FluidModule *fluid_ = nullptr;
   const SolidModule *solid_ = nullptr;
+  const ContactModule *contact_ = nullptr;
+  const GapSeal *seal_ = nullptr;
   std::unique_ptr<Boundaries> bcs_;
   std::unique_ptr<GeneralizedAlpha> time_;
   std::unique_ptr<Ale> ale_;

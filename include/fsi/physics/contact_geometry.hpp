@@ -1,0 +1,22 @@
+// The distance from a point to a triangle, with its exact gradient and Hessian in the 12
+// coordinates (point, then the three corners): the gap function of node-to-surface contact.
+// The closest point lies in one of seven regions (the face, an edge, a corner: Ericson,
+// Real-Time Collision Detection, 5.1.5); inside a region the distance is smooth and is
+// differentiated by Jet (jet.hpp); across regions it is C1, which is what a Newton tangent needs.
+#pragma once
+
+namespace fsi {
+
+enum class TriRegion { face, edge01, edge02, edge12, corner0, corner1, corner2 };
+
+// Distance |p - closest point of triangle (a, b, c)| and the region of the closest point.
+double point_triangle_distance(const double p[3], const double a[3], const double b[3],
+                               const double c[3], TriRegion &region);
+
+// The same distance d with g = dd/dx and H = d2d/dx2, x = (p, a, b, c) (12 numbers), inside the
+// given region.  Requires d > 0.
+void point_triangle_distance_derivatives(const double p[3], const double a[3], const double b[3],
+                                         const double c[3], TriRegion region, double &d,
+                                         double g[12], double H[12][12]);
+
+} // namespace fsi

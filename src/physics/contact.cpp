@@ -1,0 +1,174 @@
+#include "fsi/physics/contact.hpp"
+#include "fsi/physics/contact_geometry.hpp"
+#include "fsi/scene/options.hpp"
+
+#include <cmath>
+
+namespace fsi {
+
+ContactParams ContactParams::from_options() {
+  ContactParams p;
+  p.surface = opt::string("contact_surface", p.surface);
+  if (!opt::has("contact_offset"))
+    throw InputError("-physics contact needs -contact_offset [m]: the gap the leaflets keep "
+                     "(e.g. 3/4 of the geometric gap between them)");
+  p.offset = opt::positive("contact_offset", 1);
+  p.penalty = opt::positive("contact_penalty", p.penalty);
+  p.ramp = opt::positive("contact_ramp", 0.25 * p.offset);
+  p.margin = opt::positive("contact_pattern_margin", p.offset);
+  if (p.ramp > p.offset)
+    throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
+                     ") must not exceed -contact_offset (" + std::to_string(p.offset) + ")");
+  return p;
+}
+
+double ContactParams::pressure(double p) const {
+  if (p <= 0) return 0;
+  return p < ramp ? penalty * p * p / (2 * ramp) : penalty * (p - 0.5 * ramp);
+}
+
+double ContactParams::pressure_slope(double p) const {
+  if (p <= 0) return 0;
+  return p < ramp ? penalty * p / ramp : penalty;
+}
+
+ContactModule::ContactModule(std::shared_ptr<ContactSurface> surface, const ContactParams &p)
+    : surface_(std::move(surface)), p_(p) {}
+
+std::string ContactModule::name() const {
+  char s[200];
+  std::snprintf(s, sizeof s, "contact (penalty %g Pa/m, offset %g m, %d pieces)", p_.penalty,
+                p_.offset, surface_->n_components());
+  return s;
+}
+
+std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius) {
+  ContactSurface &S = *surface_;
+  S.bin(radius);
+  std::vector<Pair> pairs;
+  const int nc = S.n_components();
+  std::vector<double> best(nc);
+  std::vector<int> best_tri(nc);
+  for (int n = 0; n < S.n_nodes(); ++n) {
+    std::fill(best.begin(), best.end(), radius);
+    std::fill(best_tri.begin(), best_tri.end(), -1);
+    const int cn = S.component(n);
+    S.near(S.x(n), [&](int t) {
+      const int ct = S.triangle_component(t);
+      if (ct == cn) return;
+      const auto &tr = S.triangle(t);
+      TriRegion region;
+      const double d = point_triangle_distance(S.x(n), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
+      if (d < best[ct]) {
+        best[ct] = d;
+        best_tri[ct] = t;
+      }
+    });
+    for (int c = 0; c < nc; ++c)
+      if (best_tri[c] >= 0) pairs.push_back({n, best_tri[c]});
+  }
+  return pairs;
+}
+
+void ContactModule::begin_solve(const StepContext &ctx) {
+  surface_->update(ctx);
+  pending_ = pattern_;
+  for (const Pair &pr : pairs_within(p_.offset + p_.margin))
+    for (int k : surface_->triangle(pr.tri))
+      pending_.insert(key(pr.node, k));
+  int grew = pending_.size() > pattern_.size(), any;
+  MPI_Allreduce(&grew, &any, 1, MPI_INT, MPI_MAX, surface_->comm());
+  changed_ = any != 0;
+}
+
+void ContactModule::pattern_built() {
+  pattern_ = pending_;
+  changed_ = false;
+}
+
+void ContactModule::global_couplings(std::vector<PetscInt> &pairs) const {
+  pairs.clear();
+  for (unsigned long long k : pending_) {
+    pairs.push_back(surface_->global_dof((int)(k >> 32)));
+    pairs.push_back(surface_->global_dof((int)(k & 0xffffffffu)));
+  }
+}
+
+void ContactModule::add_residual(const StepContext &, PetscScalar *F) {
+  const ContactSurface &S = *surface_;
+  stats_ = ContactStats{0, 0, 0, stats_.pattern_misses};
+  for (const Pair &pr : pairs_within(p_.offset)) {
+    const auto &tr = S.triangle(pr.tri);
+    TriRegion region;
+    const double d0 =
+        point_triangle_distance(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
+    if (d0 <= 1e-9 * p_.offset) continue; // passed through: no direction to push
+    double d, g[12], H[12][12];
+    point_triangle_distance_derivatives(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region, d,
+                                        g, H);
+    const double pen = p_.offset - d, f = 0.5 * S.area(pr.node) * p_.pressure(pen);
+    stats_.active_pairs++;
+    stats_.max_penetration = std::max(stats_.max_penetration, pen);
+    stats_.force += f;
+    const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
+    for (int a = 0; a < 4; ++a) {
+      const PetscInt l = S.owned_local_dof(nodes[a]);
+      if (l < 0) continue;
+      for (int i = 0; i < 3; ++i)
+        F[l + i] -= f * g[3 * a + i]; // dE/dx = psi'(p) dp/dx = -psi'(p) dd/dx
+    }
+  }
+}
+
+void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {
+  const ContactSurface &S = *surface_;
+  const std::vector<char> &bc = *ctx.is_dirichlet;
+  const double cu = ctx.disp_shift();
+  for (const Pair &pr : pairs_within(p_.offset)) {
+    const auto &tr = S.triangle(pr.tri);
+    TriRegion region;
+    const double d0 =
+        point_triangle_distance(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
+    if (d0 <= 1e-9 * p_.offset) continue;
+    double d, g[12], H[12][12];
+    point_triangle_distance_derivatives(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region, d,
+                                        g, H);
+    const double pen = p_.offset - d, w = 0.5 * S.area(pr.node);
+    const double f = w * p_.pressure(pen), fs = w * p_.pressure_slope(pen);
+    // d2E/dx2 = psi'' g g^T - psi' H
+    double K[12][12];
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j)
+        K[i][j] = cu * (fs * g[i] * g[j] - f * H[i][j]);
+    const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
+    for (int a = 0; a < 4; ++a) {
+      const PetscInt l = S.owned_local_dof(nodes[a]);
+      if (l < 0 || bc[l]) continue;
+      PetscInt rows[3], cols[12];
+      double vals[3][12];
+      int nc = 0;
+      for (int b = 0; b < 4; ++b) {
+        const bool coupled = a == b || (a > 0 && b > 0) || pattern_.count(key(nodes[a], nodes[b]));
+        if (!coupled) {
+          stats_.pattern_misses++;
+          continue;
+        }
+        for (int j = 0; j < 3; ++j) {
+          cols[nc + j] = S.global_dof(nodes[b]) + j;
+          for (int i = 0; i < 3; ++i)
+            vals[i][nc + j] = K[3 * a + i][3 * b + j];
+        }
+        nc += 3;
+      }
+      for (int i = 0; i < 3; ++i)
+        rows[i] = S.global_dof(nodes[a]) + i;
+      double packed[3 * 12];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < nc; ++j)
+          packed[i * nc + j] = vals[i][j];
+      FSI_CALL(MatSetValues(J, 3, rows, nc, cols, packed, ADD_VALUES));
+    }
+  }
+}
+
+} // namespace fsi
