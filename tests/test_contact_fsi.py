@@ -4,9 +4,10 @@ The pressure outside the plates exceeds that in the gap and bends them shut, lik
 closing.  With contact and the gap seal the run completes (remeshing the fluid twice); the tips
 stop at the offset (gap >= offset - penetration, penetration < 10 % of it), no element
 inverts, and the downward velocity in the gap falls by > 90 % from its peak (measured 96 %:
--0.047 -> -0.002 m/s).  Without the closure model the same run stops (exit 3, checkpoint kept)
+-0.047 -> -0.002 m/s).  With --long (not in CI): without the closure model the same run stops (exit 3, checkpoint kept)
 when the plates cross and cells invert (measured at t = 85 ms): closure is what lets it
 through."""
+import sys
 from fsitest import check, finish, run, scene
 
 PLATES = scene("plates_closing")
@@ -30,7 +31,8 @@ if rows:
     check(m["seal_cells"] > 0, "the gap seal is active")
     check(min(x["mesh_min_jacobian"] for x in rows) > 0, "no fluid cell inverted")
 
-bare = run(PLATES, np=2, extra=["-physics", "fluid,solid", "-allow_unused_options"])
-print(f"without contact and seal: exit {bare.code}")
-check(bare.code == 3, "without the closure model the run stops (exit 3)")
+if "--long" in sys.argv:  # 45 s more: kept out of CI's budget
+    bare = run(PLATES, np=2, extra=["-physics", "fluid,solid", "-allow_unused_options"])
+    print(f"without contact and seal: exit {bare.code}")
+    check(bare.code == 3, "without the closure model the run stops (exit 3)")
 finish()

@@ -1,0 +1,30 @@
+"""The aortic valve closing (issue 16), CI mesh, 2 ranks (tests/scenes/valve_closing.opts): the
+aortic pressure rises to 1.3 kPa over 5 ms against a zero-pressure ventricle, 7 steps of 1 ms
+(contact offset 0.75 mm, just inside the 0.8 mm reference gap, so that the free edges meet
+within the steps a CI test affords: measured at t = 6 ms, 30 pairs; 8 s/step).
+The leaflets are pressed shut: every step converges, the free edges come into contact (pairs
+> 0) and stop at the offset (penetration below the ramp's half width plus 2 p/k), the gap seal
+is active, the flow is backwards (outlet -> inlet) and no fluid cell or leaflet element
+inverts."""
+from fsitest import check, finish, run, scene
+
+VALVE = scene("valve_closing")
+OFFSET, RAMP, PENALTY, P = 0.00075, 0.00075 / 4, 1e8, 1300.0
+
+r = run(VALVE, np=2)
+check(r.code == 0 and r.summary["converged"], "the valve closes: every step converges on 2 ranks")
+rows = r.monitor if r.code == 0 else []
+if rows:
+    m = rows[-1]
+    print(f"t = {m['time']*1e3:.0f} ms: contact pairs {int(m['contact_pairs'])}, penetration "
+          f"{m['contact_max_penetration']*1e6:.1f} um, sealing cells {int(m['seal_cells'])}, "
+          f"dp {m['valve_dp']:.0f} Pa, inlet flux {m['inlet_flux']:.2e} m^3/s, leaflet |u| max "
+          f"{m['valve_leaflet_umax']*1e3:.2f} mm, Newton {[int(x['newton']) for x in rows]}")
+    check(m["contact_pairs"] > 0, "the free edges are in contact")
+    check(m["contact_max_penetration"] < RAMP / 2 + 2 * P / PENALTY,
+          "they stop at the offset (penetration < ramp/2 + 2 p/k)")
+    check(m["seal_cells"] > 0, "the gap seal is active")
+    check(all(x["valve_dp"] < 0 for x in rows[1:]), "the aorta is above the ventricle (dp < 0)")
+    check(m["inlet_flux"] > 0, "the flow through the valve plane is backwards (leaflets closing)")
+    check(min(x["mesh_min_jacobian"] for x in rows) > 0, "no fluid cell inverts")
+finish()
