@@ -1,5 +1,5 @@
 """Closure in a flow (issue 16): two plates in a fluid box, fluid entering at the top (200 Pa)
-and leaving through a drain between them (tests/scenes/plates_closing.opts), 2 ranks, 40 steps.
+and leaving through a drain between them (tests/scenes/plates_closing.opts), 2 ranks, 35 steps.
 The pressure outside the plates exceeds that in the gap and bends them shut, like a valve
 closing.  With contact and the gap seal the run completes (remeshing the fluid twice); the tips
 stop at the offset (gap >= offset - penetration, penetration < 10 % of it), no element
@@ -13,7 +13,7 @@ from fsitest import check, finish, run, scene
 PLATES = scene("plates_closing")
 GAP0, OFFSET = 0.002, 0.0005
 
-r = run(PLATES, np=2)
+r = run(PLATES, np=2, extra=["-ts_max_time", "0.0875"])  # contact from 77.5 ms
 check(r.code == 0 and r.summary["converged"], "plates closing with contact and seal: run completes")
 rows = r.monitor if r.code == 0 else []
 if rows:
