@@ -12,7 +12,8 @@ two plates 10 mm high, 2 mm apart, pressed together by a pressure on their outer
    the distance's region boundaries, where the Hessian jumps, and is not checked), and Newton
    converges on the full scene in <= 8 iterations per load step.
 4. Bad input: a negative offset, a ramp wider than the offset, -physics contact without the
-   solid, a gap seal without the fluid, a contact surface the mesh lacks:
+   solid, a gap seal without the fluid, a contact surface the mesh lacks, a seal whose open gap
+   is below its closed one, a negative seal resistance:
    one error line naming the option, exit 2."""
 import re
 from fsitest import check, finish, run, scene
@@ -65,8 +66,14 @@ bad = [
     ("missing contact surface", ["-contact_surface", "cusps"], "cusps"),
     ("gap seal without the fluid", ["-physics", "solid,contact,gap_seal"], "gap_seal"),
 ]
-for name, extra, needle in bad:
-    r = run(PLATES, extra=extra)
+bad = [(n, e, k, PLATES) for n, e, k in bad] + [
+    ("gap seal open below closed", ["-gap_seal_gap_open", "0.0005"], "gap_seal_gap_open",
+     scene("plates_closing")),
+    ("negative seal resistance", ["-gap_seal_resistance", "-1e7"], "gap_seal_resistance",
+     scene("plates_closing")),
+]
+for name, extra, needle, sc in bad:
+    r = run(sc, extra=extra)
     lines = [l for l in r.out.splitlines() if "fsi_app: error:" in l]
     check(r.code == 2, f"{name}: exit 2 ({r.code})")
     check(len(lines) == 1 and needle in lines[0], f"{name}: one error line naming '{needle}'")

@@ -1,5 +1,4 @@
 #include "fsi/physics/contact.hpp"
-#include "fsi/physics/contact_geometry.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
@@ -47,11 +46,10 @@ std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius) {
   S.bin(radius);
   std::vector<Pair> pairs;
   const int nc = S.n_components();
-  std::vector<double> best(nc);
-  std::vector<int> best_tri(nc);
+  std::vector<Pair> best(nc);
   for (int n = 0; n < S.n_nodes(); ++n) {
-    std::fill(best.begin(), best.end(), radius);
-    std::fill(best_tri.begin(), best_tri.end(), -1);
+    for (auto &b : best)
+      b = {n, -1, radius, TriRegion::face};
     const int cn = S.component(n);
     S.near(S.x(n), [&](int t) {
       const int ct = S.triangle_component(t);
@@ -59,15 +57,25 @@ std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius) {
       const auto &tr = S.triangle(t);
       TriRegion region;
       const double d = point_triangle_distance(S.x(n), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
-      if (d < best[ct]) {
-        best[ct] = d;
-        best_tri[ct] = t;
-      }
+      if (d < best[ct].d) best[ct] = {n, t, d, region};
     });
-    for (int c = 0; c < nc; ++c)
-      if (best_tri[c] >= 0) pairs.push_back({n, best_tri[c]});
+    for (const Pair &b : best)
+      if (b.tri >= 0) pairs.push_back(b);
   }
   return pairs;
+}
+
+template <class F> void ContactModule::for_each_active(F &&f) {
+  const ContactSurface &S = *surface_;
+  for (const Pair &pr : pairs_within(p_.offset)) {
+    if (pr.d <= 1e-9 * p_.offset) continue; // passed through: no direction to push
+    const auto &tr = S.triangle(pr.tri);
+    double d, g[12], H[12][12];
+    point_triangle_distance_derivatives(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), pr.region,
+                                        d, g, H);
+    const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
+    f(nodes, p_.offset - d, 0.5 * S.area(pr.node), g, H);
+  }
 }
 
 void ContactModule::begin_solve(const StepContext &ctx) {
@@ -97,50 +105,32 @@ void ContactModule::global_couplings(std::vector<PetscInt> &pairs) const {
 void ContactModule::add_residual(const StepContext &, PetscScalar *F) {
   const ContactSurface &S = *surface_;
   stats_ = ContactStats{0, 0, 0, stats_.pattern_misses};
-  for (const Pair &pr : pairs_within(p_.offset)) {
-    const auto &tr = S.triangle(pr.tri);
-    TriRegion region;
-    const double d0 =
-        point_triangle_distance(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
-    if (d0 <= 1e-9 * p_.offset) continue; // passed through: no direction to push
-    double d, g[12], H[12][12];
-    point_triangle_distance_derivatives(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region, d,
-                                        g, H);
-    const double pen = p_.offset - d, f = 0.5 * S.area(pr.node) * p_.pressure(pen);
+  for_each_active([&](const int *nodes, double pen, double w, const double *g, auto &) {
+    const double f = w * p_.pressure(pen);
     stats_.active_pairs++;
     stats_.max_penetration = std::max(stats_.max_penetration, pen);
     stats_.force += f;
-    const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
     for (int a = 0; a < 4; ++a) {
       const PetscInt l = S.owned_local_dof(nodes[a]);
       if (l < 0) continue;
       for (int i = 0; i < 3; ++i)
         F[l + i] -= f * g[3 * a + i]; // dE/dx = psi'(p) dp/dx = -psi'(p) dd/dx
     }
-  }
+  });
 }
 
 void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {
   const ContactSurface &S = *surface_;
   const std::vector<char> &bc = *ctx.is_dirichlet;
   const double cu = ctx.disp_shift();
-  for (const Pair &pr : pairs_within(p_.offset)) {
-    const auto &tr = S.triangle(pr.tri);
-    TriRegion region;
-    const double d0 =
-        point_triangle_distance(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
-    if (d0 <= 1e-9 * p_.offset) continue;
-    double d, g[12], H[12][12];
-    point_triangle_distance_derivatives(S.x(pr.node), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region, d,
-                                        g, H);
-    const double pen = p_.offset - d, w = 0.5 * S.area(pr.node);
+  for_each_active([&](const int *nodes, double pen, double w, const double *g,
+                      const double(&H)[12][12]) {
     const double f = w * p_.pressure(pen), fs = w * p_.pressure_slope(pen);
     // d2E/dx2 = psi'' g g^T - psi' H
     double K[12][12];
     for (int i = 0; i < 12; ++i)
       for (int j = 0; j < 12; ++j)
         K[i][j] = cu * (fs * g[i] * g[j] - f * H[i][j]);
-    const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
     for (int a = 0; a < 4; ++a) {
       const PetscInt l = S.owned_local_dof(nodes[a]);
       if (l < 0 || bc[l]) continue;
@@ -168,7 +158,7 @@ void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {
           packed[i * nc + j] = vals[i][j];
       FSI_CALL(MatSetValues(J, 3, rows, nc, cols, packed, ADD_VALUES));
     }
-  }
+  });
 }
 
 } // namespace fsi

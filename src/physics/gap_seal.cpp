@@ -46,11 +46,11 @@ std::string GapSeal::name() const {
 }
 
 // Target resistance at point c: from the two nearest pieces of the surface.
-double GapSeal::target(const double c[3]) const {
+double GapSeal::target(const double c[3], std::vector<double> &best) const {
   const ContactSurface &S = *surface_;
   double d1 = p_.gap_open, d2 = p_.gap_open;
   int c1 = -1;
-  std::vector<double> best(S.n_components(), p_.gap_open);
+  best.assign(S.n_components(), p_.gap_open);
   S.near(c, [&](int t) {
     const auto &tr = S.triangle(t);
     TriRegion r;
@@ -81,12 +81,13 @@ void GapSeal::begin_solve(const StepContext &ctx) {
   const double relax = p_.ramp_time > 0 ? 1 - std::exp(-ctx.dt / p_.ramp_time) : 1.0;
   int sealing = 0;
   double amax = 0;
+  std::vector<double> best; // distance to each piece, reused for every cell
   for (size_t c = 0; c < cells_.size(); ++c) {
     double x[3] = {0, 0, 0};
     for (int i = 0; i < 4; ++i)
       for (int d = 0; d < 3; ++d)
         x[d] += 0.25 * ctx.X_af[3 * space_.cell_vertex[4 * cells_[c] + i] + d];
-    const double a = target(x), prev = alpha_prev_[c];
+    const double a = target(x, best), prev = alpha_prev_[c];
     alpha_[c] = prev < 0 ? a : prev + (a - prev) * relax;
     sealing += alpha_[c] > 0.5 * p_.resistance;
     amax = std::max(amax, alpha_[c]);
@@ -105,15 +106,19 @@ static double mesh_velocity(const Space &sp, const StepContext &ctx, PetscInt k,
   return 0.5 * (ctx.W[3 * va + i] + ctx.W[3 * vb + i]);
 }
 
+double GapSeal::absdet_af(const StepContext &ctx, PetscInt k) const {
+  double X[4][3];
+  space_.cell_points(k, ctx.X_af, X);
+  TetGeometry geo;
+  geo.set(X);
+  return geo.absdet;
+}
+
 void GapSeal::add_residual(const StepContext &ctx, PetscScalar *F) {
   for (size_t c = 0; c < cells_.size(); ++c) {
     if (alpha_[c] <= 0) continue;
     const PetscInt k = cells_[c];
-    double X[4][3];
-    space_.cell_points(k, ctx.X_af, X);
-    TetGeometry geo;
-    geo.set(X);
-    const double s = alpha_[c] * geo.absdet;
+    const double s = alpha_[c] * absdet_af(ctx, k);
     const PetscInt *vd = &space_.cell_vdof[10 * k];
     double r[10][3];
     for (int b = 0; b < 10; ++b)
@@ -134,11 +139,7 @@ void GapSeal::add_jacobian(const StepContext &ctx, Mat J) {
   for (size_t c = 0; c < cells_.size(); ++c) {
     if (alpha_[c] <= 0) continue;
     const PetscInt k = cells_[c];
-    double X[4][3];
-    space_.cell_points(k, ctx.X_af, X);
-    TetGeometry geo;
-    geo.set(X);
-    const double s = alpha_[c] * geo.absdet * ctx.stiff_shift();
+    const double s = alpha_[c] * absdet_af(ctx, k) * ctx.stiff_shift();
     const PetscInt *vd = &space_.cell_vdof[10 * k];
     PetscInt rows[30], cols[30];
     double K[30][30] = {};

@@ -13,6 +13,7 @@
 // Options (prefix -contact_): surface NAME (default "interface"), offset [m] (required),
 // penalty k [Pa/m], ramp s [m] (default offset / 4), pattern_margin [m] (default offset).
 #pragma once
+#include "fsi/physics/contact_geometry.hpp"
 #include "fsi/physics/contact_surface.hpp"
 #include "fsi/physics/physics_module.hpp"
 #include <memory>
@@ -58,9 +59,14 @@ public:
 private:
   struct Pair {
     int node, tri;
+    double d;         // node-to-triangle distance
+    TriRegion region; // where on the triangle the closest point lies
   };
   // Node-triangle pairs closer than `radius`: the nearest triangle of each other piece.
   std::vector<Pair> pairs_within(double radius);
+  // Calls f(nodes, penetration, node weight, g, H) for every pair closer than the offset, with
+  // the distance's gradient g and Hessian H in the 12 coordinates of nodes (node, triangle).
+  template <class F> void for_each_active(F &&f);
   static unsigned long long key(int a, int b) {
     if (a > b) std::swap(a, b);
     return ((unsigned long long)a << 32) | (unsigned)b;

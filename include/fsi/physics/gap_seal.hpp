@@ -49,7 +49,9 @@ public:
   const std::vector<PetscInt> &cells() const { return cells_; }
 
 private:
-  double target(const double c[3]) const;
+  // Target resistance at point c from its distances to the two nearest pieces (best: scratch).
+  double target(const double c[3], std::vector<double> &best) const;
+  double absdet_af(const StepContext &ctx, PetscInt k) const; // |det J| of cell k at t_{n+af}
   const Space &space_;
   std::vector<PetscInt> cells_;
   std::shared_ptr<ContactSurface> surface_;
