@@ -6,11 +6,15 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 APP = os.environ.get("FSI_APP", "")
 SRC = os.environ.get("FSI_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# odls_base_sigkill_timeout=0: when a rank exits non-zero (every bad-input case), mpirun would
+# wait 1 s between SIGTERM and SIGKILL of the job, twice: 2.7 s instead of 0.8 s per failing run.
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", OPENBLAS_NUM_THREADS="1")
+           OMPI_MCA_rmaps_base_oversubscribe="1", OPENBLAS_NUM_THREADS="1",
+           OMPI_MCA_odls_base_sigkill_timeout="0")
 FAILURES = []
 
 
@@ -47,9 +51,10 @@ def run(opts, np=1, extra=(), presets=("direct",), timeout=900):
         cmd += ["-options_file", preset(p)]
     cmd += ["-out_dir", outdir, "-mesh_cache_dir", os.path.join(SRC, "build", "mesh_cache")]
     cmd += list(extra)
+    t0 = time.time()
     p = subprocess.run(cmd, cwd=SRC, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                        text=True, timeout=timeout)
-    print("$", " ".join(cmd))
+    print(f"$ ({time.time() - t0:.1f} s)", " ".join(cmd))
     tail = "\n".join(p.stdout.strip().splitlines()[-3:])
     print(tail)
     return Run(p.returncode, p.stdout, outdir)

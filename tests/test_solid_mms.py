@@ -9,7 +9,7 @@ materials = {
     "neo_hookean": ["-solid_mu", "3000", "-solid_kappa", "1e4"],
     "mooney_rivlin": ["-solid_C10", "1000", "-solid_C01", "500", "-solid_kappa", "1e4"],
 }
-sizes = [0.5, 0.25, 0.18]
+sizes = [0.5, 0.25, 0.2]  # 1130, 2710, 4956 cells (0.18: 8045 cells, same orders, 2x the time)
 for name, params in materials.items():
     hs, es = [], []
     for h in sizes:

@@ -7,9 +7,10 @@
   integral of inflow - outflow) is printed (not exact: see README);
 - point M's peak radial displacement is of the order of the static estimate (0.11-0.13 mm);
 - the mesh stays valid (smallest volume ratio > 0.5).
-Then the same 100 steps with the mass-conservative interface (-ale_interface, geometry iterated to
-1e-8): the fluid volume change equals the time integral of inflow - outflow to 1e-6 of the change,
-and the wave speed stays within the same band."""
+Then the first 40 steps (the pulse and its passage past L/2) with the mass-conservative interface
+(-ale_interface, geometry iterated to 1e-8): the fluid volume change equals the time integral of
+inflow - outflow to 1e-6 of the change.  (Its wave speed, 4.90 m/s over 100 steps, is not checked
+here, to keep CI short.)"""
 import os
 from fsitest import SRC, check, finish, run
 
@@ -56,19 +57,16 @@ if m:
 
 rc = run(TUBE, np=2, presets=("fieldsplit_ilu",),
          extra=["-mesh_h", "0.002", "-ale_interface", "interface", "-ale_geometry_iterations", "10",
-                "-ale_geometry_rtol", "1e-8"])
-check(rc.code == 0, "conservative interface, 100 steps: run succeeds")
+                "-ale_geometry_rtol", "1e-8", "-ts_max_steps", "40"])
+check(rc.code == 0, "conservative interface, 40 steps: run succeeds")
 if rc.code == 0:
     mc = rc.monitor
     dV = mc[-1]["fluid_volume"] - mc[0]["fluid_volume"]
     net = sum(-DT * (x["inlet_flux"] + x["outlet_flux"]) for x in mc[1:])
     rel = abs(dV - net) / abs(dV)
-    check(len(mc) == 100 and rel < 1e-6,
+    check(len(mc) == 40 and rel < 1e-6,
           f"volume change {dV:.6e} m^3 = time integral of inflow - outflow {net:.6e} m^3 to {rel:.1e} (< 1e-6)")
-    m = mc
-    c = (L / 2) / (arrival("probe2_p") - arrival("probe0_p"))
-    check(0.9 * 5.07 <= c <= 1.1 * 5.74, f"conservative interface: wave speed {c:.2f} m/s within 10 % of 5.07-5.74 m/s")
     ux = max(x["solid_probe0_ux"] for x in mc)
     print(f"conservative interface: point M peak radial {1e3 * ux:.4f} mm; "
-          f"{rc.summary['iterations']['newton_total']} Newton over 100 steps (geometry iterations)")
+          f"{rc.summary['iterations']['newton_total']} Newton over 40 steps (geometry iterations)")
 finish()

@@ -125,4 +125,44 @@ void Boundaries::add_jacobian(const StepContext &ctx, Mat J) const {
     bc->add_jacobian(ctx, J);
 }
 
+void Boundaries::accept_step() {
+  for (auto &bc : bcs_)
+    bc->accept_step();
+}
+
+void Boundaries::save_state(std::map<std::string, double> &s) const {
+  for (auto &bc : bcs_)
+    bc->save_state(s);
+}
+
+void Boundaries::restore_state(const std::map<std::string, double> &s) {
+  for (auto &bc : bcs_)
+    bc->restore_state(s);
+}
+
+std::vector<std::string> Boundaries::monitor_columns() const {
+  std::vector<std::string> c;
+  for (auto &bc : bcs_)
+    for (auto &n : bc->monitor_columns())
+      c.push_back(n);
+  return c;
+}
+
+std::vector<double> Boundaries::monitor_values() const {
+  std::vector<double> v;
+  for (auto &bc : bcs_)
+    for (double x : bc->monitor_values())
+      v.push_back(x);
+  return v;
+}
+
+std::vector<std::vector<PetscInt>> Boundaries::dense_couplings() const {
+  std::vector<std::vector<PetscInt>> blocks;
+  for (auto &bc : bcs_) {
+    auto b = bc->dense_coupling();
+    if (!b.empty()) blocks.push_back(std::move(b));
+  }
+  return blocks;
+}
+
 } // namespace fsi

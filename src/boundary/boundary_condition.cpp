@@ -110,4 +110,35 @@ void add_face_block(Mat J, const BoundaryFace &f, const std::vector<char> &mask,
   FSI_CALL(MatSetValuesLocal(J, 18, rows, 18, cols, &K[0][0], ADD_VALUES));
 }
 
+void add_backflow_jacobian(const std::vector<BoundaryFace> &faces, const StepContext &ctx,
+                           const QuadRule &rule, double beta, double rho, Mat J) {
+  if (beta <= 0) return;
+  const std::vector<char> &mask = *ctx.is_dirichlet;
+  const double c = 0.5 * beta * rho * ctx.stiff_shift();
+  for (auto &f : faces) {
+    double n[3];
+    const double J2 = outward_normal(f, ctx.X_af, n);
+    double K[18][18] = {};
+    bool any = false;
+    for (size_t q = 0; q < rule.weight.size(); ++q) {
+      double N[6], v[3] = {0, 0, 0};
+      p2_tri(rule.lambda[q].data(), N);
+      for (int a = 0; a < 6; ++a)
+        for (int d = 0; d < 3; ++d)
+          v[d] += N[a] * ctx.v_af(f.vdof[a] + d);
+      const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+      if (vn >= 0) continue;
+      any = true;
+      // d/dv [-(c) vn v_i] = -c (n_j v_i + vn delta_ij)
+      const double w = rule.weight[q] * J2;
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b)
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              K[3 * a + i][3 * b + j] -= w * c * N[a] * N[b] * (n[j] * v[i] + (i == j ? vn : 0.0));
+    }
+    if (any) add_face_block(J, f, mask, K);
+  }
+}
+
 } // namespace fsi

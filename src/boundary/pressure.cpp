@@ -31,37 +31,8 @@ struct Pressure : BoundaryCondition {
     for (auto &f : faces_)
       add_fluid_face_traction(f, ctx, rule, beta, rho, traction, F);
   }
-  // d/dv of the backflow term -(beta rho/2) min(v.n, 0) v.
   void add_jacobian(const StepContext &ctx, Mat J) const override {
-    if (beta <= 0) return;
-    const std::vector<char> &mask = *ctx.is_dirichlet;
-    const double c = 0.5 * beta * rho * ctx.stiff_shift();
-    for (auto &f : faces_) {
-      double n[3];
-      const double J2 = outward_normal(f, ctx.X_af, n);
-      double K[18][18] = {};
-      bool any = false;
-      for (size_t q = 0; q < rule.weight.size(); ++q) {
-        double N[6], v[3] = {0, 0, 0};
-        p2_tri(rule.lambda[q].data(), N);
-        for (int a = 0; a < 6; ++a)
-          for (int d = 0; d < 3; ++d)
-            v[d] += N[a] * ctx.v_af(f.vdof[a] + d);
-        const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-        if (vn >= 0) continue;
-        any = true;
-        // d/dv [-(c) vn v_i] = -c (n_j v_i + vn delta_ij)
-        const double w = rule.weight[q] * J2;
-        for (int a = 0; a < 6; ++a)
-          for (int b = 0; b < 6; ++b)
-            for (int i = 0; i < 3; ++i)
-              for (int j = 0; j < 3; ++j)
-                K[3 * a + i][3 * b + j] -=
-                    w * c * N[a] * N[b] * (n[j] * v[i] + (i == j ? vn : 0.0));
-      }
-      if (!any) continue;
-      add_face_block(J, f, mask, K);
-    }
+    add_backflow_jacobian(faces_, ctx, rule, beta, rho, J);
   }
 };
 

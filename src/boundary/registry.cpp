@@ -8,6 +8,7 @@ std::unique_ptr<BoundaryCondition> make_noslip(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_velocity(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_flow_rate(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_pressure(const BoundarySetup &);
+std::unique_ptr<BoundaryCondition> make_windkessel(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_traction_exact(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_clamped(const BoundarySetup &);
 std::unique_ptr<BoundaryCondition> make_displacement(const BoundarySetup &);
@@ -21,6 +22,10 @@ const std::vector<BoundaryType> &boundary_types() {
       {"flow_rate", "fluid", "v = s(t) profile(x), flux = value waveform(t) [m^3/s] inwards",
        make_flow_rate},
       {"pressure", "fluid", "traction -p(t) n [Pa] with backflow stabilisation", make_pressure},
+      {"windkessel", "fluid",
+       "three-element Windkessel (RCR) outlet: traction -(R_p Q + P_c) n, C dP_c/dt = Q - "
+       "(P_c - p_distal)/R_d",
+       make_windkessel},
       {"traction_exact", "fluid", "traction of -exact_solution (verification)",
        make_traction_exact},
       {"clamped", "solid", "u = 0", make_clamped},

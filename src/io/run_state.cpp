@@ -56,6 +56,16 @@ void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write
           f.set("hemo_surfaces", names);
           f.write("/hemo/window", hemo_window);
         }
+        if (!lumped.empty()) {
+          std::string keys;
+          std::vector<double> values;
+          for (auto &[k, v] : lumped) {
+            keys += (keys.empty() ? "" : ",") + k;
+            values.push_back(v);
+          }
+          f.set("lumped_keys", keys);
+          f.write("/lumped/values", values);
+        }
       } // closed
       const int fd = open(partial.c_str(), O_RDONLY);
       if (fd >= 0) {
@@ -121,6 +131,13 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
             s.hemo[n].values = f.read("/hemo/" + n + "/accumulators");
           }
       }
+      if (f.has_attribute("lumped_keys")) {
+        const auto values = f.read("/lumped/values");
+        std::stringstream keys(f.get_string("lumped_keys"));
+        std::string k;
+        for (size_t i = 0; std::getline(keys, k, ',') && i < values.size(); ++i)
+          s.lumped[k] = values[i];
+      }
     } catch (InputError &e) {
       err = e.what();
     }
@@ -142,6 +159,23 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
   MPI_Bcast(&nw, 1, MPI_INT, 0, comm);
   s.hemo_window.resize(nw);
   MPI_Bcast(s.hemo_window.data(), nw, MPI_DOUBLE, 0, comm);
+  // Lumped-model state: "key value" lines from rank 0 to all.
+  std::string lumped;
+  for (auto &[k, v] : s.lumped) {
+    char buf[64];
+    snprintf(buf, sizeof buf, " %.17g\n", v);
+    lumped += k + buf;
+  }
+  int nl = (int)lumped.size();
+  MPI_Bcast(&nl, 1, MPI_INT, 0, comm);
+  lumped.resize(nl);
+  MPI_Bcast(lumped.data(), nl, MPI_CHAR, 0, comm);
+  s.lumped.clear();
+  std::stringstream ls(lumped);
+  std::string key;
+  double value;
+  while (ls >> key >> value)
+    s.lumped[key] = value;
   s.step = std::lround(meta[0]);
   s.time = meta[1];
   s.dt = meta[2];

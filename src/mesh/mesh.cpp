@@ -75,9 +75,16 @@ std::vector<PetscInt> Mesh::cells_in(const std::string &name) const {
   return cells;
 }
 
+static std::string opt_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
 // Mesh a .geo with the gmsh API (rank 0) into `out`, atomically.
 static void generate_with_gmsh(const std::string &geo, double h,
-                               const std::vector<std::string> &params, const std::string &out) {
+                               const std::vector<std::string> &params, const std::string &out,
+                               double max_cells) {
   std::vector<std::string> args = {"fsi_app", "-setnumber", "h", std::to_string(h)};
   for (auto &p : params) {
     auto eq = p.find('=');
@@ -94,10 +101,26 @@ static void generate_with_gmsh(const std::string &geo, double h,
   std::string tmp = out.substr(0, out.size() - 4) + ".tmp" + std::to_string(getpid()) + ".msh";
   try {
     gmsh::open(geo);
+    // Refuse sizes that would swamp memory (gmsh aborts, or the machine swaps) before meshing:
+    // the bounding box filled with regular tetrahedra of edge h (volume h^3 / (6 sqrt 2)), an
+    // upper estimate of the cell count.
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+    const double cells = (x1 - x0) * (y1 - y0) * (z1 - z0) * 6 * std::sqrt(2.0) / (h * h * h);
+    if (!(cells <= max_cells)) {
+      gmsh::finalize();
+      char msg[256];
+      std::snprintf(msg, sizeof msg, "%.3g cells (at most; limit -mesh_max_cells %.3g)", cells,
+                    max_cells);
+      throw InputError("option -mesh_h " + opt_number(h) + " would mesh " + geo + " into up to " +
+                       msg + ": give a larger -mesh_h (or raise -mesh_max_cells)");
+    }
     gmsh::model::mesh::generate(3);
     gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
     gmsh::option::setNumber("Mesh.Binary", 1);
     gmsh::write(tmp);
+  } catch (InputError &) {
+    throw;
   } catch (...) {
     gmsh::finalize();
     throw InputError("gmsh failed to mesh " + geo + " at h = " + std::to_string(h) +
@@ -120,6 +143,7 @@ static std::string cached_mesh(MPI_Comm comm, const std::string &geo, double h,
   std::string stem = geo.substr(geo.find_last_of('/') + 1);
   stem = stem.substr(0, stem.find('.'));
   std::string out = dir + "/" + stem + "_" + hash + ".msh";
+  const double max_cells = opt::positive("mesh_max_cells", 5e7);
   int rank;
   MPI_Comm_rank(comm, &rank);
   int ok = 1;
@@ -131,7 +155,7 @@ static std::string cached_mesh(MPI_Comm comm, const std::string &geo, double h,
       err = "cannot create mesh cache directory " + dir + " (set -mesh_cache_dir)";
     } else {
       try {
-        generate_with_gmsh(geo, h, params, out);
+        generate_with_gmsh(geo, h, params, out, max_cells);
       } catch (InputError &e) {
         ok = 0;
         err = e.what();

@@ -14,6 +14,16 @@ SolidParams SolidParams::from_options() {
     if (g.size() != 3) throw InputError("option -solid_gravity needs 3 numbers gx,gy,gz [m/s^2]");
     for (int i = 0; i < 3; ++i)
       p.gravity[i] = g[i];
+    // Gravity's own waveform (-solid_gravity_waveform ...); in steady load stepping it ramps
+    // with the load steps by default (linear over [0, ts_max_time]), as boundary loads do
+    // with a linear waveform: full gravity on the first step defeats load stepping.
+    const bool steady = opt::choice("ts_type", "alpha", {"alpha", "steady"}) == "steady";
+    if (steady && !opt::has("solid_gravity_waveform")) {
+      p.gravity_wave.kind = Waveform::Linear;
+      p.gravity_wave.period = opt::positive("ts_max_time", 1.0);
+    } else {
+      p.gravity_wave = Waveform::from_options("solid_gravity_");
+    }
   }
   p.quad_degree = (int)opt::integer("solid_quad_degree", 4);
   if (p.quad_degree < 2 || p.quad_degree > 10)
@@ -53,6 +63,7 @@ void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3])
 void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
   const double rho = p_.rho;
   const bool inertia = !ctx.steady;
+  const double g_scale = p_.gravity_wave(ctx.t_af);
   for (PetscInt k : cells_) {
     TetGeometry geo;
     double X[4][3], u[10][3], acc[10][3] = {};
@@ -79,7 +90,7 @@ void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
       material_->stress(F, P);
       double f[3]; // inertia minus body force, per unit reference volume
       for (int i = 0; i < 3; ++i)
-        f[i] = rho * (a[i] - p_.gravity[i]);
+        f[i] = rho * (a[i] - g_scale * p_.gravity[i]);
       if (exact_) {
         double x[3] = {0, 0, 0}, b[3];
         for (int v = 0; v < 4; ++v)

@@ -71,6 +71,7 @@ Simulation::Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &
     ale_->restore(dn);
     FSI_CALL(VecCopy(time_->velocity(), U_));
     wss_.load(*state);
+    bcs_->restore_state(state->lumped);
   }
 }
 
@@ -334,6 +335,7 @@ StepStats Simulation::step() {
     throw SolveError(std::string("Newton did not converge at step ") + std::to_string(next) +
                      " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[r.reason] +
                      "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
+  bcs_->accept_step(); // lumped models advance with the converged iterate's flux
   time_->advance(U_);
   ale_->accept();
   return s;
@@ -345,6 +347,8 @@ std::vector<std::string> Simulation::monitor_columns() const {
   const auto valve_columns = valve_.columns();
   columns.insert(columns.end(), valve_columns.begin(), valve_columns.end());
   columns.insert(columns.end(), wss_columns.begin(), wss_columns.end());
+  const auto bc_columns = bcs_->monitor_columns();
+  columns.insert(columns.end(), bc_columns.begin(), bc_columns.end());
   if (contact_)
     for (auto c : {"contact_pairs", "contact_max_penetration", "contact_force"})
       columns.push_back(c);
@@ -365,6 +369,8 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   const auto vm = valve_.evaluate(*this);
   row.insert(row.end(), vm.begin(), vm.end());
   row.insert(row.end(), wss_.values().begin(), wss_.values().end());
+  const auto bv = bcs_->monitor_values();
+  row.insert(row.end(), bv.begin(), bv.end());
   if (contact_)
     row.insert(row.end(), {(double)contact_->stats().active_pairs,
                            contact_->stats().max_penetration, contact_->stats().force});
@@ -400,6 +406,7 @@ RunState Simulation::capture() const {
   keys_->capture({time_->velocity(), time_->acceleration(), time_->displacement()},
                  ale_->displacement(), material_X_, s);
   wss_.save(s);
+  bcs_->save_state(s.lumped);
   return s;
 }
 

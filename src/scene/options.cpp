@@ -1,4 +1,6 @@
 #include "fsi/scene/options.hpp"
+#include <cerrno>
+#include <cmath>
 
 #include <cstdlib>
 #include <sstream>
@@ -48,7 +50,16 @@ static double parse_real(const std::string &name, const std::string &text) {
   double v = std::strtod(text.c_str(), &end);
   if (text.empty() || *end != '\0')
     throw InputError("option -" + name + " expects a number, got '" + text + "'");
+  if (!std::isfinite(v))
+    throw InputError("option -" + name + " expects a finite number, got '" + text + "'");
   return v;
+}
+
+// A number as given (1e-09, not 0.000000).
+static std::string shortest(double v) {
+  char buf[32];
+  snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 double real(const std::string &name, double def) {
@@ -59,14 +70,14 @@ double real(const std::string &name, double def) {
 double positive(const std::string &name, double def) {
   double v = real(name, def);
   if (!(v > 0))
-    throw InputError("option -" + name + " must be positive, got " + std::to_string(v) +
+    throw InputError("option -" + name + " must be positive, got " + shortest(v) +
                      ": give a value > 0");
   return v;
 }
 
 double nonnegative(const std::string &name, double def) {
   double v = real(name, def);
-  if (!(v >= 0)) throw InputError("option -" + name + " must be >= 0, got " + std::to_string(v));
+  if (!(v >= 0)) throw InputError("option -" + name + " must be >= 0, got " + shortest(v));
   return v;
 }
 
@@ -79,9 +90,11 @@ long integer(const std::string &name, long def) {
   std::string s;
   if (!raw(name, s)) return def;
   char *end = nullptr;
+  errno = 0;
   long v = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || *end != '\0')
     throw InputError("option -" + name + " expects an integer, got '" + s + "'");
+  if (errno == ERANGE) throw InputError("option -" + name + " is out of range: '" + s + "'");
   return v;
 }
 

@@ -32,6 +32,15 @@ public:
   void add_residual(const StepContext &ctx, PetscScalar *F) const;
   void add_jacobian(const StepContext &ctx, Mat J) const;
   bool pressure_pinned() const { return pinned_; }
+  // Lumped models on the boundaries (boundary_condition.hpp): after an accepted step, state,
+  // monitors.
+  void accept_step();
+  void save_state(std::map<std::string, double> &s) const;
+  void restore_state(const std::map<std::string, double> &s);
+  std::vector<std::string> monitor_columns() const;
+  std::vector<double> monitor_values() const;
+  // Dense all-to-all couplings of the boundary terms (global dofs, one list per block).
+  std::vector<std::vector<PetscInt>> dense_couplings() const;
   // Global number of pressure dofs held at zero because no fluid cell touches them.
   long pressure_dofs_outside_fluid() const;
   const std::vector<std::unique_ptr<BoundaryCondition>> &list() const { return bcs_; }

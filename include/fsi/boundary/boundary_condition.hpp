@@ -14,6 +14,7 @@
 #include "fsi/time/step_context.hpp"
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,6 +62,16 @@ public:
   virtual void add_jacobian(const StepContext &ctx, Mat J) const {}
   // Does it fix the fluid's pressure level (a traction boundary)?
   virtual bool fixes_pressure_level() const { return false; }
+  // A lumped (0D) model coupled to the boundary (a Windkessel): its state advances after each
+  // accepted step, is saved in checkpoints and carried into rebuilt runs (keys prefixed with
+  // the boundary's name), and monitored.
+  virtual void accept_step() {}
+  virtual void save_state(std::map<std::string, double> &) const {}
+  virtual void restore_state(const std::map<std::string, double> &) {}
+  virtual std::vector<std::string> monitor_columns() const { return {}; }
+  virtual std::vector<double> monitor_values() const { return {}; }
+  // Global velocity dofs that its Jacobian couples all with all (same list on every rank).
+  virtual std::vector<PetscInt> dense_coupling() const { return {}; }
 
   bool fixed(int component) const { return fixed_[component]; }
   const std::vector<DofNode> &nodes() const { return nodes_; }
@@ -96,6 +107,11 @@ void add_fluid_face_traction(
     const BoundaryFace &f, const StepContext &ctx, const QuadRule &rule, double beta, double rho,
     const std::function<void(const double x[3], const double n[3], double t[3])> &traction,
     PetscScalar *F);
+
+// Jacobian of that backflow term, d/dv [-(beta rho/2) min(v.n, 0) v], over `faces` (none for
+// beta = 0).
+void add_backflow_jacobian(const std::vector<BoundaryFace> &faces, const StepContext &ctx,
+                           const QuadRule &rule, double beta, double rho, Mat J);
 
 // Add an 18 x 18 block K (6 face nodes x 3 components, row-major) into J, rows of Dirichlet
 // dofs (mask) skipped.

@@ -32,6 +32,8 @@ struct RunState {
   std::map<std::string, KeyedItems> hemo;
   std::vector<double> hemo_window;
   std::map<std::string, Json> hemo_last_window; // summary of the last closed window (in memory)
+  // Lumped models on boundaries (a Windkessel's capacitor pressure), by key.
+  std::map<std::string, double> lumped;
 
   // Checkpoint files (rank 0 writes; all ranks call).  write() is atomic: a .partial file,
   // fsync, rename.  read() checks the format and the scene tag.

@@ -6,9 +6,11 @@
 // tangent enters the velocity block scaled by d(u_af)/dv = alpha_f beta dt / gamma.  In static
 // mode the unknown is the displacement rate over a load step and there is no inertia.
 // Options (prefix -solid_): region NAME (physical volume, default "solid"), rho [kg/m^3],
-// gravity gx,gy,gz [m/s^2], quad_degree (default 4), direct_insertion, and the material
+// gravity gx,gy,gz [m/s^2] (times -solid_gravity_waveform ...; in steady load stepping a linear
+// ramp over the load steps by default), quad_degree (default 4), direct_insertion, and the material
 // (material.hpp).  A manufactured solution (exact_solid.hpp) adds its body force.
 #pragma once
+#include "fsi/analytic/analytic.hpp"
 #include "fsi/analytic/exact_solid.hpp"
 #include "fsi/discretization/element_assembler.hpp"
 #include "fsi/discretization/p2tet.hpp"
@@ -23,6 +25,7 @@ struct SolidParams {
   std::string region = "solid";
   double rho = 1000;
   double gravity[3] = {0, 0, 0};
+  Waveform gravity_wave; // its time dependence (steady: ramped with the load steps)
   int quad_degree = 4;
   bool direct_insertion = true;
   static SolidParams from_options();
