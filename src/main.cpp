@@ -30,8 +30,15 @@ int run(MPI_Comm comm) {
   OutputNames names{out.dir(), restart.empty() ? "fields" : "fields_restart",
                     restart.empty() ? "hemo" : "hemo_restart", opt::integer("out_fields_every", 0)};
   std::unique_ptr<RunState> resume;
-  if (!restart.empty())
-    resume = std::make_unique<RunState>(RunState::read(comm, restart, scene.tag()));
+  if (!restart.empty()) {
+    try {
+      resume = std::make_unique<RunState>(RunState::read(comm, restart, scene.tag()));
+    } catch (InputError &e) { // name the option the file came from
+      const std::string what = e.what();
+      throw InputError(what.find("-restart") == std::string::npos ? what + " (option -restart)"
+                                                                  : what);
+    }
+  }
   auto mesh = std::make_unique<Mesh>();
   std::string mesh_file; // the remeshed mesh the run is on (empty: the scene's)
   long remeshes = 0;

@@ -110,9 +110,9 @@ K2.dir = K.dir  # it wrote there (-out_dir given last wins)
 steps = [int(r["step"]) for r in K2.monitor]
 check(steps == list(range(1, 41)), "monitor.csv holds steps 1..40 once each")
 
-# SIGTERM to mpirun during a 400-step run.
-fine = ["-ts_dt", "0.0025"]
-R = run(wom, np=2, extra=fine + ["-checkpoint_every", "400"])
+# SIGTERM to mpirun during a 200-step run.
+fine = ["-ts_dt", "0.005"]
+R = run(wom, np=2, extra=fine + ["-checkpoint_every", "200"])
 out = os.path.join(K.dir, "sigterm")
 cmd = ["mpirun", "-n", "2", APP, "-options_file", scene("womersley"), "-options_file",
        preset("direct"), "-out_dir", out, "-mesh_cache_dir",
@@ -140,11 +140,11 @@ check(s is not None and s["converged"] is False and "SIGTERM" in s["reason"],
       "SIGTERM: summary says converged false, stopped by SIGTERM")
 if s:
     with h5py.File(os.path.join(out, "checkpoint.h5")) as f:
-        check(f.attrs["step"] == s["final_step"] and 0 < s["final_step"] < 400,
+        check(f.attrs["step"] == s["final_step"] and 0 < s["final_step"] < 200,
               f"SIGTERM: checkpoint at the last step ({s['final_step']})")
-    S = run(wom, np=2, extra=fine + ["-checkpoint_every", "400", "-restart",
+    S = run(wom, np=2, extra=fine + ["-checkpoint_every", "200", "-restart",
                                      os.path.join(out, "checkpoint.h5")])
     check(S.code == 0, "resumed after SIGTERM")
     compare(os.path.join(R.dir, "checkpoint.h5"), os.path.join(S.dir, "checkpoint.h5"),
-            "SIGTERM + restart vs uninterrupted (400 steps)")
+            "SIGTERM + restart vs uninterrupted (200 steps)")
 finish()

@@ -11,11 +11,15 @@
    static deflection (a suddenly applied load overshoots at most 2x without damping).
 3. Absurd sizes and values are refused before they run: -mesh_h 1e-9 on the tube (it used to
    abort inside gmsh with a backtrace, exit 134) and non-finite numbers: exit 2, one error line
-   naming the option, no backtrace, in seconds."""
+   naming the option, no backtrace, in seconds.
+4. `scripts/run tube -out_dir X` puts the whole run, monitor.png included, into X (it used to draw
+   monitor.png into results/tube)."""
 import math
 import os
+import subprocess
+import tempfile
 import time
-from fsitest import SRC, check, finish, run, scene
+from fsitest import ENV, SRC, check, finish, run, scene
 
 CG = scene("cantilever_gravity")
 L, BEAM = 1.0, 0.20  # length, linear-theory tip deflection [m]
@@ -55,4 +59,14 @@ for opts, extra, name in bad:
           and "terminate called" not in r.out and time.time() - t0 < 30,
           f"{' '.join(extra)}: exit {r.code} in {time.time() - t0:.1f} s: "
           + (lines[0] if lines else "no error line"))
+
+out = os.path.join(tempfile.mkdtemp(), "tube_run")
+png = os.path.join(SRC, "results", "tube", "monitor.png")
+before = os.path.getmtime(png) if os.path.exists(png) else None
+p = subprocess.run([os.path.join(SRC, "scripts", "run"), "tube", "-out_dir", out, "-ts_max_steps", "2"],
+                   cwd=SRC, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                   timeout=600)
+after = os.path.getmtime(png) if os.path.exists(png) else None
+check(p.returncode == 0 and os.path.exists(os.path.join(out, "monitor.png")) and before == after,
+      f"scripts/run tube -out_dir X: exit {p.returncode}, monitor.png in X, results/tube untouched")
 finish()

@@ -4,7 +4,7 @@ inflow) and with the direct and the field-split presets (to 1e-6, the Krylov tol
 Newton iteration per step (fieldsplit_ilu_one_newton) stays within 1e-3 of converged Newton (its
 linearisation error; measured 1.1e-4, in the start transient); the added-mass stress test: solid
 density 100 and 10 kg/m^3 (rho_s / rho_f = 0.1, 0.01, where partitioned schemes fail) converges
-in Newton at dt = 1e-4 s for 40 steps and stays bounded."""
+in Newton at dt = 1e-4 s for 25 steps (the 3 ms pulse loading the wall) and stays bounded."""
 import os
 from fsitest import SRC, check, finish, run
 
@@ -33,7 +33,7 @@ if r1.code == 0 and r2.code == 0:
     d, col = compare(r1.monitor, r2.monitor)
     check(d < 1e-8, f"1 vs 2 ranks agree to {d:.1e} of the physical scale (worst: {col})")
 rf = run(TUBE, np=2, extra=COARSE, presets=("fieldsplit_ilu",))
-rd = run(TUBE, np=2, extra=COARSE)
+rd = r2  # the direct reference: the 2-rank run above (tight Newton; default: 3.2e-12 apart)
 check(rf.code == 0 and rd.code == 0, "direct and fieldsplit_ilu runs succeed")
 if rf.code == 0 and rd.code == 0:
     d, col = compare(rd.monitor, rf.monitor)
@@ -55,8 +55,8 @@ rq = run(TUBE, np=2, extra=COARSE + ["-ale_max_skewness", "0.5", "-ale_remesh_sk
 check(rq.code == 3 and "too distorted" in rq.out and rq.summary["converged"] is False,
       "a mesh past -ale_max_skewness stops the run before the step: exit 3, clear message, converged false")
 for rho in ("100", "10"):
-    r = run(TUBE, np=2, extra=["-mesh_h", "0.002", "-ts_max_steps", "40", "-solid_rho", rho])
-    check(r.code == 0, f"rho_s = {rho}: 40 steps converge")
+    r = run(TUBE, np=2, extra=["-mesh_h", "0.002", "-ts_max_steps", "25", "-solid_rho", rho])
+    check(r.code == 0, f"rho_s = {rho}: 25 steps converge")
     if r.code == 0:
         m = r.monitor
         newton = max(int(x["newton"]) for x in m)

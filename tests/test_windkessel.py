@@ -9,7 +9,7 @@
   on a coarse mesh);
 - Newton converges with the outlet's dense block in the Jacobian (<= 4 per step);
 - restart: 15 steps on 1 rank, then the rest on 2 ranks from the checkpoint = the uninterrupted
-  run (P_c to 1e-8 relative);
+  run (P_c to 1e-8 relative); the same across two remeshes (the state used to be dropped there);
 - bad input (non-positive R or C, a missing or non-finite parameter, an unknown Jacobian kind):
   one error line naming the option, exit 2."""
 import math
@@ -77,6 +77,14 @@ if a.code == 0 and b.code == 0 and "0.01" in runs and runs["0.01"].code == 0:
     want = runs["0.01"].monitor[-1]["outlet_wk_capacitor_pressure"]
     got = b.monitor[-1]["outlet_wk_capacitor_pressure"]
     check(abs(got - want) <= 1e-8 * want, f"restarted P_c {got:.10f} = uninterrupted {want:.10f}")
+
+# Remeshing (a new fluid mesh and a rebuilt run) carries the Windkessel's state.
+m = run(WK, np=2, extra=["-ale_remesh_every", "10"])
+check(m.code == 0 and m.out.count("fsi_app: remesh ") == 2, "2 remeshes on 2 ranks")
+if m.code == 0 and "0.01" in runs and runs["0.01"].code == 0:
+    want = runs["0.01"].monitor[-1]["outlet_wk_capacitor_pressure"]
+    got = m.monitor[-1]["outlet_wk_capacitor_pressure"]
+    check(abs(got - want) <= 1e-8 * want, f"P_c across 2 remeshes {got:.10f} = {want:.10f}")
 
 bad = [("R_p", "0"), ("C", "-1e-9"), ("R_d", "0"), ("C", "nan"), ("p0", "inf"),
        ("jacobian", "dense"), ("R_d", "")]

@@ -232,6 +232,7 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space,
   s.scene = state.scene;
   s.easy_run = state.easy_run;
   s.hemo_window = state.hemo_window;
+  s.lumped = state.lumped; // boundary models (a Windkessel) do not see the mesh
   MPI_Bcast(&rep.gap_vertices, 1, MPI_LONG, 0, comm);
   double r[11] = {(double)rep.fluid_cells_before,
                   (double)rep.fluid_cells_after,

@@ -198,6 +198,7 @@ RunState transfer_state(const OldMesh &om, const NewMesh &nm, const RunState &ol
   s.easy_run = old.easy_run;
   s.hemo_window = old.hemo_window;
   s.hemo_last_window = old.hemo_last_window;
+  s.lumped = old.lumped;
   // Vertices: mesh displacement 0 (the new reference is the current mesh); the solid keeps its
   // material reference, fluid vertices get theirs at their new position.
   for (size_t v = 0; v < y.size(); ++v) {

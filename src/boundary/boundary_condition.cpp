@@ -110,6 +110,16 @@ void add_face_block(Mat J, const BoundaryFace &f, const std::vector<char> &mask,
   FSI_CALL(MatSetValuesLocal(J, 18, rows, 18, cols, &K[0][0], ADD_VALUES));
 }
 
+void add_fluid_pressure(const std::vector<BoundaryFace> &faces, const StepContext &ctx,
+                        const QuadRule &rule, double beta, double rho, double p, PetscScalar *F) {
+  auto traction = [p](const double *, const double *n, double *t) {
+    for (int d = 0; d < 3; ++d)
+      t[d] = -p * n[d];
+  };
+  for (auto &f : faces)
+    add_fluid_face_traction(f, ctx, rule, beta, rho, traction, F);
+}
+
 void add_backflow_jacobian(const std::vector<BoundaryFace> &faces, const StepContext &ctx,
                            const QuadRule &rule, double beta, double rho, Mat J) {
   if (beta <= 0) return;

@@ -24,12 +24,7 @@ struct Pressure : BoundaryCondition {
   bool fixes_pressure_level() const override { return true; }
   void add_residual(const StepContext &ctx, PetscScalar *F) const override {
     const double p = P * wave(ctx.t_af);
-    auto traction = [p](const double *, const double *n, double *t) {
-      for (int d = 0; d < 3; ++d)
-        t[d] = -p * n[d];
-    };
-    for (auto &f : faces_)
-      add_fluid_face_traction(f, ctx, rule, beta, rho, traction, F);
+    add_fluid_pressure(faces_, ctx, rule, beta, rho, p, F);
   }
   void add_jacobian(const StepContext &ctx, Mat J) const override {
     add_backflow_jacobian(faces_, ctx, rule, beta, rho, J);

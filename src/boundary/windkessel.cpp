@@ -123,12 +123,7 @@ struct Windkessel : BoundaryCondition {
     const double p =
         steady ? p_distal + (R_p + R_d) * Q_np1
                : R_p * ((1 - alpha_f) * Q_n + alpha_f * Q_np1) + Pc + alpha_f * capacitor_change();
-    auto traction = [p](const double *, const double *n, double *t) {
-      for (int d = 0; d < 3; ++d)
-        t[d] = -p * n[d];
-    };
-    for (auto &f : faces_)
-      add_fluid_face_traction(f, ctx, rule, beta, rho, traction, F);
+    add_fluid_pressure(faces_, ctx, rule, beta, rho, p, F);
   }
   void add_jacobian(const StepContext &ctx, Mat J) const override {
     add_backflow_jacobian(faces_, ctx, rule, beta, rho, J);

@@ -1,6 +1,7 @@
 #include "fsi/post/locate.hpp"
 #include "fsi/discretization/p2tet.hpp"
 #include "fsi/scene/options.hpp"
+#include <cmath>
 
 #include <sstream>
 
@@ -61,7 +62,7 @@ std::vector<std::array<double, 3>> parse_points(const std::string &name) {
     while (std::getline(is, c, ',')) {
       char *end = nullptr;
       const double v = std::strtod(c.c_str(), &end);
-      if (k >= 3 || end == c.c_str() || *end)
+      if (k >= 3 || end == c.c_str() || *end || !std::isfinite(v))
         throw InputError("-" + name + " expects x,y,z;x,y,z;... [m], got '" + item + "'");
       p[k++] = v;
     }

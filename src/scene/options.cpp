@@ -1,4 +1,5 @@
 #include "fsi/scene/options.hpp"
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 
@@ -98,10 +99,17 @@ long integer(const std::string &name, long def) {
   return v;
 }
 
+// A flag alone means true; PETSc's spellings of true and false are accepted.
 bool flag(const std::string &name, bool def) {
-  PetscBool v = def ? PETSC_TRUE : PETSC_FALSE, set = PETSC_FALSE;
-  FSI_CALL(PetscOptionsGetBool(nullptr, nullptr, key(name).c_str(), &v, &set));
-  return v;
+  std::string s;
+  if (!raw(name, s)) return def;
+  std::string low;
+  for (char c : s)
+    low += (char)std::tolower((unsigned char)c);
+  if (low.empty() || low == "true" || low == "yes" || low == "on" || low == "1") return true;
+  if (low == "false" || low == "no" || low == "off" || low == "0") return false;
+  throw InputError("option -" + name + " is a flag: give true or false (or nothing), got '" + s +
+                   "'");
 }
 
 std::string string(const std::string &name, const std::string &def) {

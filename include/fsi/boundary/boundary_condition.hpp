@@ -108,6 +108,10 @@ void add_fluid_face_traction(
     const std::function<void(const double x[3], const double n[3], double t[3])> &traction,
     PetscScalar *F);
 
+// The uniform pressure traction -p n over `faces`, with that backflow term.
+void add_fluid_pressure(const std::vector<BoundaryFace> &faces, const StepContext &ctx,
+                        const QuadRule &rule, double beta, double rho, double p, PetscScalar *F);
+
 // Jacobian of that backflow term, d/dv [-(beta rho/2) min(v.n, 0) v], over `faces` (none for
 // beta = 0).
 void add_backflow_jacobian(const std::vector<BoundaryFace> &faces, const StepContext &ctx,
