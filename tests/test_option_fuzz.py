@@ -47,7 +47,7 @@ FILES = {"mesh_file", "mesh_geo", "restart", "bc_<b>_table"}
 INTEGERS = {"out_fields_every", "checkpoint_every", "checkpoint_crash_test", "sim_rebuild_every",
             "sim_pattern_rebuild_every", "ts_max_steps", "step_grow_after", "step_easy_newton",
             "fluid_quad_degree", "solid_quad_degree", "ale_geometry_iterations",
-            "ale_remesh_every", "ale_remesh_gap_cells", "ale_remesh_verbose",
+            "ale_remesh_every", "ale_remesh_verbose",
             "ale_remesh_test_fault", "valve_goa_pixels"}
 EXPRESSIONS = {"bc_<b>_expr"}
 

@@ -26,7 +26,7 @@ WaveTable WaveTable::read(const std::string &file, const std::string &option, bo
     std::istringstream ss(line);
     std::string a, b, extra;
     if (!(ss >> a)) continue; // blank or comment
-    const std::string where = file + " line " + std::to_string(row);
+    const std::string where = file + " line " + std::to_string(row) + " (option -" + option + ")";
     if (!(ss >> b) || (ss >> extra))
       throw InputError("waveform table " + where + ": expected two numbers 't value'");
     double t, v;
@@ -46,7 +46,9 @@ WaveTable WaveTable::read(const std::string &file, const std::string &option, bo
     w.t.push_back(t);
     w.v.push_back(v);
   }
-  if (w.t.size() < 2) throw InputError("waveform table " + file + ": needs at least two rows");
+  if (w.t.size() < 2)
+    throw InputError("waveform table " + file + " (option -" + option +
+                     "): needs at least two rows of 't value'");
   return w;
 }
 
