@@ -23,6 +23,7 @@
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -40,9 +41,10 @@ struct Windkessel : BoundaryCondition {
   MPI_Comm comm;
   std::string pre;
   const Space &space;
-  std::vector<PetscInt> coupled;        // global dofs of the dense block, sorted (all ranks)
-  mutable std::vector<char> held;       // per coupled dof: a Dirichlet dof (row skipped)
-  mutable std::vector<double> w_loc, w; // the weights w on the coupled dofs
+  std::vector<PetscInt> coupled;         // global dofs of the dense block, sorted (all ranks)
+  std::vector<std::array<long, 9>> slot; // per face: edge node m, component d -> coupled index
+  mutable std::vector<char> held;        // per coupled dof: a Dirichlet dof (row skipped)
+  mutable std::vector<double> w_loc, w;  // the weights w on the coupled dofs
 
   explicit Windkessel(const BoundarySetup &s)
       : BoundaryCondition(s, Data::velocity, false, true),
@@ -57,6 +59,14 @@ struct Windkessel : BoundaryCondition {
     const std::string jac = opt::choice(pre + "jacobian", "auto", {"auto", "full", "lagged"});
     if (jac != "lagged") find_coupled_dofs();
     if (jac == "auto" && coupled.size() > 3000) coupled.clear();
+    if (!coupled.empty())
+      for (auto &f : faces_) {
+        std::array<long, 9> k;
+        for (int m = 0; m < 3; ++m)
+          for (int d = 0; d < 3; ++d)
+            k[3 * m + d] = index_of(space.local_to_global[f.vdof[3 + m] + d]);
+        slot.push_back(k);
+      }
     PetscPrintf(comm,
                 "  boundary '%s': Windkessel R_p %.3g Pa s/m^3, C %.3g m^3/Pa, R_d %.3g Pa s/m^3 "
                 "(tau %.3g s), P_c(0) %.4g Pa; Jacobian %s (%zu coupled dofs)\n",
@@ -131,11 +141,11 @@ struct Windkessel : BoundaryCondition {
     const size_t n = coupled.size();
     if (held.size() != n) { // which coupled dofs are Dirichlet (fixed for the run)
       std::vector<char> loc(n, 0);
-      for (auto &f : faces_)
+      for (size_t q = 0; q < faces_.size(); ++q)
         for (int m = 0; m < 3; ++m)
           for (int d = 0; d < 3; ++d) {
-            const long k = index_of(space.local_to_global[f.vdof[3 + m] + d]);
-            if (k >= 0 && (*ctx.is_dirichlet)[f.vdof[3 + m] + d]) loc[k] = 1;
+            const long k = slot[q][3 * m + d];
+            if (k >= 0 && (*ctx.is_dirichlet)[faces_[q].vdof[3 + m] + d]) loc[k] = 1;
           }
       held.resize(n);
       MPI_Allreduce(loc.data(), held.data(), (int)n, MPI_CHAR, MPI_MAX, comm);
@@ -143,14 +153,12 @@ struct Windkessel : BoundaryCondition {
     // w on X_af: a flat P2 triangle's edge functions integrate to area / 3.
     w_loc.assign(n, 0.0);
     w.assign(n, 0.0);
-    for (auto &f : faces_) {
+    for (size_t q = 0; q < faces_.size(); ++q) {
       double nrm[3];
-      const double third = outward_normal(f, ctx.X_af, nrm) / 6;
+      const double third = outward_normal(faces_[q], ctx.X_af, nrm) / 6;
       for (int m = 0; m < 3; ++m)
-        for (int d = 0; d < 3; ++d) {
-          const long k = index_of(space.local_to_global[f.vdof[3 + m] + d]);
-          if (k >= 0) w_loc[k] += third * nrm[d];
-        }
+        for (int d = 0; d < 3; ++d)
+          if (slot[q][3 * m + d] >= 0) w_loc[slot[q][3 * m + d]] += third * nrm[d];
     }
     MPI_Allreduce(w_loc.data(), w.data(), (int)n, MPI_DOUBLE, MPI_SUM, comm);
     const double c = dP_dQ() * ctx.stiff_shift();
