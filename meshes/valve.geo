@@ -16,6 +16,9 @@
 //   h        element size on and near the leaflets; hfar far from them (default 4 h);
 //   hgrow    distance over which the size grows from h to hfar
 //   tlayers  solid elements through the thickness wanted (1 or 2; sizes the leaflet mesh)
+//   hbase    element size along the leaflets' attachment to the root (default: h, no band),
+//            where the opening leaflet bends most: at h = 1.5 mm the thin elements there
+//            invert when the valve is half open; hbasew the width of that band (default 2 mm)
 // Leaflet k (k = 0, 1, 2, centre angle 90 + 120 k degrees) is the shell of thickness t about an
 // ellipsoid (semi-axes rho_l, rho_l, stretch rho_l) centred on the wall at the commissure
 // height, cut to its own 120-degree sector (less gap/2 from each dividing plane), to the lower
@@ -37,6 +40,7 @@ If (!Exists(h)) h = 0.001; EndIf
 If (!Exists(hfar)) hfar = 4 * h; EndIf
 If (!Exists(hgrow)) hgrow = 0.008; EndIf
 If (!Exists(tlayers)) tlayers = 1; EndIf
+If (!Exists(hbasew)) hbasew = 0.002; EndIf
 
 zc = stretch * rho_l;         // commissure height: the ellipsoids' centre height
 Ltot = Lin + zc + Lout;
@@ -144,6 +148,20 @@ Field[2].SizeMax = hfar;
 Field[2].DistMin = 0.1 * hgrow;
 Field[2].DistMax = hgrow;
 Background Field = 2;
+If (Exists(hbase))
+  Field[3] = Distance;
+  Field[3].SurfacesList = {attach()};
+  Field[3].NumPointsPerCurve = 50;
+  Field[4] = Threshold;
+  Field[4].InField = 3;
+  Field[4].SizeMin = Min(hbase, hleaf);
+  Field[4].SizeMax = hfar;
+  Field[4].DistMin = hbasew;
+  Field[4].DistMax = 2 * hbasew;
+  Field[5] = Min;
+  Field[5].FieldsList = {2, 4};
+  Background Field = 5;
+EndIf
 Mesh.CharacteristicLengthExtendFromBoundary = 0;
 Mesh.CharacteristicLengthFromPoints = 0;
 Mesh.CharacteristicLengthFromCurvature = 0;

@@ -101,6 +101,7 @@ int run(MPI_Comm comm) {
     report.add_output_time(MPI_Wtime() - o0);
   };
   const double loop_start = MPI_Wtime();
+  bool options_checked = false;
   install_stop_handlers();
   try {
     while (sim->time() < t_end - 1e-9 * scene.time.dt) {
@@ -135,7 +136,12 @@ int run(MPI_Comm comm) {
         continue; // retried with the cut step
       }
       const double step_s = MPI_Wtime() - t0;
-      if (sim->step_index() == first_step + 1) check_unused_options();
+      // Solver options are read when the solver is first set up: a step with nothing to solve
+      // (zero load) defers the check to the first step that solves.
+      if (!options_checked && s.newton > 0) {
+        check_unused_options();
+        options_checked = true;
+      }
       report.record(out, *sim, s, dt, step_s); // monitors, monitor.csv row, fields
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);
@@ -195,6 +201,9 @@ int main(int argc, char **argv) {
   } catch (InputError &e) {
     PetscPrintf(comm, "fsi_app: error: %s\n", e.what());
     code = 2;
+  } catch (OutputError &e) { // every rank has it (collective_output)
+    PetscPrintf(comm, "fsi_app: error: output failed: %s\n", e.what());
+    code = 5;
   } catch (std::exception &e) {
     PetscPrintf(comm, "fsi_app: failure: %s\n", e.what());
     code = 4;

@@ -1,6 +1,7 @@
 // Shared helpers: PETSc error checking that throws, and the input-error exception that main()
 // turns into one clear line and a non-zero exit.
 #pragma once
+#include <functional>
 #include <petsc.h>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,16 @@ struct RemeshNeeded : DistortionError {
 struct PetscFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// An output that could not be written (disk full, directory made read-only, file-size limit):
+// one line naming the file, exit code 5; the last checkpoint written before it is intact.
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Every rank throws the OutputError that any rank hit in `write` (the lowest failing rank's
+// message), so that no rank is left waiting in a collective call of the next step.
+void collective_output(MPI_Comm comm, const std::function<void()> &write);
 
 [[noreturn]] void throw_petsc(PetscErrorCode ierr, const char *file, int line);
 

@@ -3,6 +3,9 @@
 #include <fstream>
 #include <petscviewerhdf5.h>
 #include <sstream>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 
 namespace fsi {
 
@@ -47,8 +50,9 @@ FieldWriter::FieldWriter(const Space &space, const std::string &dir, const Field
   const PetscScalar *la;
   FSI_CALL(VecGetArrayRead(l, &la));
 
-  FSI_CALL(
-      PetscViewerHDF5Open(comm, (dir + "/" + set.base + ".h5").c_str(), FILE_MODE_WRITE, &h5_));
+  check_room(); // (the mesh written next is about the size of one step's fields)
+  io("the file",
+     [&]() { return PetscViewerHDF5Open(comm, path().c_str(), FILE_MODE_WRITE, &h5_); });
   // Our P2 node order (4 vertices, then edges TET_EDGE) to VTK's quadratic tetrahedron
   // (4 vertices, then edges 01, 12, 02, 03, 13, 23).
   static const int VTK_FROM_OURS[10] = {0, 1, 2, 3, 4, 7, 5, 6, 8, 9};
@@ -98,9 +102,26 @@ FieldWriter::~FieldWriter() {
 void FieldWriter::write_and_destroy(const char *group, const std::string &name, Vec &v) {
   FSI_CALL(PetscObjectSetName((PetscObject)v, name.c_str()));
   FSI_CALL(PetscViewerHDF5PushGroup(h5_, group));
-  FSI_CALL(VecView(v, h5_));
+  try {
+    io(name, [&]() { return VecView(v, h5_); });
+  } catch (OutputError &) {
+    VecDestroy(&v);
+    throw;
+  }
   FSI_CALL(PetscViewerHDF5PopGroup(h5_));
   FSI_CALL(VecDestroy(&v));
+}
+
+void FieldWriter::io(const std::string &what, const std::function<PetscErrorCode()> &call) const {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // HDF5's own error stack: we report it
+  FSI_CALL(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  const int bad = call() != 0;
+  FSI_CALL(PetscPopErrorHandler());
+  int any = 0;
+  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, PetscObjectComm((PetscObject)space_.dm));
+  if (any)
+    throw OutputError("cannot write " + what + " to " + path() +
+                      " (disk full or directory not writable?)");
 }
 
 // A per-vertex quantity (3 per local vertex) at a node: linear along the edges.
@@ -124,8 +145,38 @@ std::vector<std::pair<std::string, int>> FieldWriter::names() const {
   return n;
 }
 
+// Parallel HDF5 does not fail symmetrically (one rank's failed write leaves the other waiting
+// in a barrier inside HDF5), so room for the step's fields is checked before writing: free space
+// on the disk and the file-size limit, with a margin.
+void FieldWriter::check_room() const {
+  MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  double need = 0;
+  for (auto &n : names())
+    need += 8.0 * n.second * n_global_;
+  need = 1.25 * need + 65536;
+  double room = 0;
+  if (rank == 0) {
+    struct statvfs fs;
+    room = statvfs(dir_.c_str(), &fs) == 0 ? (double)fs.f_bavail * fs.f_frsize : 0.0;
+    struct rlimit rl;
+    struct stat st;
+    if (getrlimit(RLIMIT_FSIZE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
+      room = std::min(room, (double)rl.rlim_cur -
+                                (stat(path().c_str(), &st) == 0 ? (double)st.st_size : 0.0));
+  }
+  MPI_Bcast(&room, 1, MPI_DOUBLE, 0, comm);
+  if (room < need)
+    throw OutputError("cannot write the fields to " + path() + ": " +
+                      std::to_string((long)(need / 1024)) + " KiB needed, " +
+                      std::to_string((long)(std::max(room, 0.0) / 1024)) +
+                      " KiB left (disk full or file-size limit)");
+}
+
 void FieldWriter::write(long step, double t, Vec U_local, const std::vector<double> &X,
                         Vec D_local) {
+  check_room();
   const PetscScalar *u, *dsol = nullptr;
   FSI_CALL(VecGetArrayRead(U_local, &u));
   if (set_.displacement) FSI_CALL(VecGetArrayRead(D_local, &dsol));
@@ -165,15 +216,22 @@ void FieldWriter::write(long step, double t, Vec U_local, const std::vector<doub
     write_and_destroy("/fields", std::string("displacement") + tag, sd);
   else
     FSI_CALL(VecDestroy(&sd));
+  io("the step's fields", [&]() { return PetscViewerFlush(h5_); }); // on disk now, or an error
   steps_.emplace_back(step, t);
 }
 
 void FieldWriter::close() {
   if (!h5_) return;
-  FSI_CALL(PetscViewerDestroy(&h5_));
+  io("the last fields", [&]() { return PetscViewerDestroy(&h5_); });
+  MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
   int rank;
-  MPI_Comm_rank(PetscObjectComm((PetscObject)space_.dm), &rank);
-  if (rank != 0) return;
+  MPI_Comm_rank(comm, &rank);
+  collective_output(comm, [&]() {
+    if (rank == 0) write_xdmf();
+  });
+}
+
+void FieldWriter::write_xdmf() const {
   const std::string path = dir_ + "/" + set_.base + ".xdmf", tmp = path + ".tmp";
   std::ofstream f(tmp);
   const auto nv = std::to_string(n_global_), nc = std::to_string(ncells_global_);
@@ -208,7 +266,8 @@ void FieldWriter::close() {
   }
   f << "  </Grid>\n </Domain>\n</Xdmf>\n";
   f.close();
-  std::rename(tmp.c_str(), path.c_str());
+  if (!f || std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw OutputError("cannot write " + path + " (disk full or directory not writable?)");
 }
 
 void merge_xdmf(const std::string &dir, const std::vector<std::string> &parts,

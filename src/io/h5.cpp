@@ -10,12 +10,19 @@ H5File::H5File(const std::string &path, Mode mode) : path_(path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); // we report errors ourselves
   id_ = mode == create ? H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)
                        : H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (id_ < 0)
-    throw InputError(std::string("cannot ") + (mode == create ? "create" : "open") +
-                     " HDF5 file '" + path + "'" +
-                     (mode == open_read
-                          ? " (missing, or not an HDF5 file: a corrupt or partial write?)"
-                          : " (is the directory writable?)"));
+  if (id_ >= 0) return;
+  if (mode == create)
+    throw OutputError("cannot create HDF5 file '" + path +
+                      "' (is the directory writable, the disk full?)");
+  throw InputError("cannot open HDF5 file '" + path +
+                   "' (missing, or not an HDF5 file: a corrupt or partial write?)");
+}
+
+void H5File::close() {
+  if (id_ < 0) return;
+  const herr_t e = H5Fclose(id_); // flushes what HDF5 still holds: a full disk shows here
+  id_ = -1;
+  if (e < 0) throw OutputError("cannot finish writing '" + path_ + "' (disk full?)");
 }
 
 H5File::~H5File() {
@@ -23,7 +30,8 @@ H5File::~H5File() {
 }
 
 void H5File::flush() {
-  H5Fflush(id_, H5F_SCOPE_GLOBAL);
+  if (H5Fflush(id_, H5F_SCOPE_GLOBAL) < 0)
+    throw OutputError("cannot write '" + path_ + "' (disk full?)");
 }
 
 void H5File::make_groups(const std::string &name) {
@@ -31,7 +39,7 @@ void H5File::make_groups(const std::string &name) {
     const std::string g = name.substr(0, p);
     if (H5Lexists(id_, g.c_str(), H5P_DEFAULT) > 0) continue;
     hid_t gid = H5Gcreate2(id_, g.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (gid < 0) throw PetscFailure("HDF5: cannot create group " + g + " in " + path_);
+    if (gid < 0) throw OutputError("cannot create group " + g + " in '" + path_ + "' (disk full?)");
     H5Gclose(gid);
   }
 }
@@ -46,7 +54,7 @@ static void write_raw(long file, const std::string &path, const std::string &nam
       ds >= 0 && (n == 0 || H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
-  if (!ok) throw PetscFailure("HDF5: cannot write " + name + " to " + path + " (disk full?)");
+  if (!ok) throw OutputError("cannot write " + name + " to '" + path + "' (disk full?)");
 }
 
 void H5File::write(const std::string &name, const std::vector<double> &v, size_t cols) {
@@ -81,9 +89,10 @@ void H5File::set(const std::string &attr, double v) {
   if (H5Aexists(id_, attr.c_str()) > 0) H5Adelete(id_, attr.c_str());
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t a = H5Acreate2(id_, attr.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
-  H5Awrite(a, H5T_NATIVE_DOUBLE, &v);
-  H5Aclose(a);
+  const bool ok = a >= 0 && H5Awrite(a, H5T_NATIVE_DOUBLE, &v) >= 0;
+  if (a >= 0) H5Aclose(a);
   H5Sclose(space);
+  if (!ok) throw OutputError("cannot write attribute " + attr + " to '" + path_ + "' (disk full?)");
 }
 
 void H5File::set(const std::string &attr, const std::string &v) {
@@ -92,10 +101,11 @@ void H5File::set(const std::string &attr, const std::string &v) {
   H5Tset_size(type, v.size() + 1);
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t a = H5Acreate2(id_, attr.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT);
-  H5Awrite(a, type, v.c_str());
-  H5Aclose(a);
+  const bool ok = a >= 0 && H5Awrite(a, type, v.c_str()) >= 0;
+  if (a >= 0) H5Aclose(a);
   H5Sclose(space);
   H5Tclose(type);
+  if (!ok) throw OutputError("cannot write attribute " + attr + " to '" + path_ + "' (disk full?)");
 }
 
 double H5File::get(const std::string &attr) const {
@@ -103,8 +113,10 @@ double H5File::get(const std::string &attr) const {
     throw InputError("'" + path_ + "' has no attribute " + attr + " (not an fsi_app file?)");
   double v = 0;
   hid_t a = H5Aopen(id_, attr.c_str(), H5P_DEFAULT);
-  H5Aread(a, H5T_NATIVE_DOUBLE, &v);
-  H5Aclose(a);
+  const bool ok = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0;
+  if (a >= 0) H5Aclose(a);
+  if (!ok)
+    throw InputError("cannot read attribute " + attr + " from '" + path_ + "' (corrupt file?)");
   return v;
 }
 

@@ -89,15 +89,23 @@ Output::~Output() {
   if (monitor_) std::fclose(monitor_);
 }
 
+// Collective: rank 0 writes; a failure (disk full, read-only directory) stops every rank.
 void Output::write_atomic(const std::string &name, const std::string &content) const {
-  if (rank_ != 0) return;
-  const std::string path = dir_ + "/" + name, tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << content;
-    if (!f) throw InputError("cannot write " + tmp);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw InputError("cannot rename " + tmp);
+  collective_output(comm_, [&]() {
+    if (rank_ != 0) return;
+    const std::string path = dir_ + "/" + name, tmp = path + ".tmp";
+    {
+      std::ofstream f(tmp);
+      f << content;
+      f.close();
+      if (!f) {
+        std::remove(tmp.c_str());
+        throw OutputError("cannot write " + tmp + " (disk full or directory not writable?)");
+      }
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+      throw OutputError("cannot rename " + tmp + " to " + path);
+  });
 }
 
 void Output::write_options() const {
@@ -145,19 +153,24 @@ void Output::open_monitor(const std::vector<std::string> &columns, long resume_s
     std::fprintf(monitor_, "%s\n", l.c_str());
 }
 
+// Collective (every rank calls it each step): a row that cannot be written stops every rank.
 void Output::monitor_row(const std::vector<double> &v) {
-  if (!monitor_) return;
-  for (size_t i = 0; i < v.size(); ++i)
-    std::fprintf(monitor_, i ? ",%.15g" : "%.15g", v[i]);
-  std::fprintf(monitor_, "\n");
-  std::fflush(monitor_);
+  collective_output(comm_, [&]() {
+    if (!monitor_) return;
+    for (size_t i = 0; i < v.size(); ++i)
+      std::fprintf(monitor_, i ? ",%.15g" : "%.15g", v[i]);
+    std::fprintf(monitor_, "\n");
+    if (std::fflush(monitor_) != 0 || std::ferror(monitor_))
+      throw OutputError("cannot write " + dir_ + "/monitor.csv.partial (disk full?)");
+  });
 }
 
 void Output::close_monitor() {
   if (!monitor_) return;
-  std::fclose(monitor_);
+  const bool ok = std::fclose(monitor_) == 0;
   monitor_ = nullptr;
-  std::rename((dir_ + "/monitor.csv.partial").c_str(), (dir_ + "/monitor.csv").c_str());
+  // A monitor that could not be written whole stays .partial: never passed off as complete.
+  if (ok) std::rename((dir_ + "/monitor.csv.partial").c_str(), (dir_ + "/monitor.csv").c_str());
 }
 
 void Output::write_summary(const Json &j) const {

@@ -66,21 +66,24 @@ void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write
           f.set("lumped_keys", keys);
           f.write("/lumped/values", values);
         }
-      } // closed
-      const int fd = open(partial.c_str(), O_RDONLY);
-      if (fd >= 0) {
-        fsync(fd);
-        close(fd);
+        f.close(); // a full disk shows here at the latest
       }
+      const int fd = open(partial.c_str(), O_RDONLY);
+      const bool synced = fd >= 0 && fsync(fd) == 0;
+      if (fd >= 0) close(fd);
+      if (!synced) throw OutputError("cannot flush " + partial + " to disk (disk full?)");
       if (std::rename(partial.c_str(), path.c_str()) != 0)
-        throw InputError("cannot rename " + partial + " to " + path);
+        throw OutputError("cannot rename " + partial + " to " + path);
     } catch (std::exception &e) {
       ok = 0;
       err = e.what();
+      std::remove(partial.c_str()); // frees the space it took; the previous checkpoint stays
     }
   }
   MPI_Bcast(&ok, 1, MPI_INT, 0, comm);
-  if (!ok) throw InputError("checkpoint not written: " + err);
+  if (!ok)
+    throw OutputError("checkpoint not written: " + err + "; the previous checkpoint " + path +
+                      ", if any, is intact");
 }
 
 RunState RunState::read(MPI_Comm comm, const std::string &path, const std::string &scene) {

@@ -34,7 +34,9 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
   for (PetscInt k : fluid->cells())
     in_fluid[k] = 1;
   base_ = base;
-  if (rank_ == 0) file_ = std::make_unique<H5File>(out_dir + "/" + base_ + ".h5", H5File::create);
+  collective_output(comm_, [&]() {
+    if (rank_ == 0) file_ = std::make_unique<H5File>(out_dir + "/" + base_ + ".h5", H5File::create);
+  });
   for (auto &n : names) {
     Surface s;
     s.name = n;
@@ -57,16 +59,17 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
     if (s.n_global == 0)
       throw InputError("-hemo_surfaces: surface '" + n + "' has no face on the fluid");
     KeyedItems all = gather_sorted(comm_, s.key, pts, 3, 9);
-    if (file_) {
+    collective_output(comm_, [&]() {
+      if (!file_) return;
       file_->write("/" + n + "/reference_points", all.values, 3);
       std::vector<long> tri(3 * s.n_global);
       for (long i = 0; i < 3 * s.n_global; ++i)
         tri[i] = i;
       file_->write_ints("/" + n + "/triangles", tri, 3);
-    }
+      file_->flush();
+    });
     surf_.push_back(std::move(s));
   }
-  if (file_) file_->flush();
 }
 
 std::vector<std::string> WallShear::columns() const {
@@ -206,7 +209,8 @@ void WallShear::close_window() {
     MPI_Allreduce(&lmin, &gmin, 1, MPI_DOUBLE, MPI_MIN, comm_);
     MPI_Allreduce(&lmax, &gmax, 1, MPI_DOUBLE, MPI_MAX, comm_);
     KeyedItems all = gather_sorted(comm_, s.key, ind, 3, 4);
-    if (file_) {
+    collective_output(comm_, [&]() {
+      if (!file_) return;
       std::vector<double> col(s.n_global);
       const char *names[4] = {"tawss", "wss_magnitude_mean", "osi", "rrt"};
       for (int q = 0; q < 4; ++q) {
@@ -216,7 +220,7 @@ void WallShear::close_window() {
       }
       file_->write("/" + s.name + "/" + w + "/interval", {window_start_, window_start_ + window_});
       file_->flush();
-    }
+    });
     Json j;
     j.set("window", window_index_)
         .set("t_start", window_start_)
@@ -248,25 +252,35 @@ void WallShear::write_instantaneous(long step, double t) {
       v[13 * i + 12] = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
     }
     KeyedItems all = gather_sorted(comm_, s.key, v, 3, 13);
-    if (!file_) continue;
-    std::vector<double> pts(9 * s.n_global), wss(3 * s.n_global), mag(s.n_global);
-    for (long i = 0; i < s.n_global; ++i) {
-      std::copy_n(&all.values[13 * i], 9, &pts[9 * i]);
-      std::copy_n(&all.values[13 * i + 9], 3, &wss[3 * i]);
-      mag[i] = all.values[13 * i + 12];
-    }
-    file_->write("/" + s.name + "/" + g + "/points", pts, 3);
-    file_->write("/" + s.name + "/" + g + "/wss", wss, 3);
-    file_->write("/" + s.name + "/" + g + "/wss_magnitude", mag);
+    collective_output(comm_, [&]() {
+      if (!file_) return;
+      std::vector<double> pts(9 * s.n_global), wss(3 * s.n_global), mag(s.n_global);
+      for (long i = 0; i < s.n_global; ++i) {
+        std::copy_n(&all.values[13 * i], 9, &pts[9 * i]);
+        std::copy_n(&all.values[13 * i + 9], 3, &wss[3 * i]);
+        mag[i] = all.values[13 * i + 12];
+      }
+      file_->write("/" + s.name + "/" + g + "/points", pts, 3);
+      file_->write("/" + s.name + "/" + g + "/wss", wss, 3);
+      file_->write("/" + s.name + "/" + g + "/wss_magnitude", mag);
+      file_->flush();
+    });
   }
-  if (file_) file_->flush();
   steps_.emplace_back(step, t);
 }
 
 // hemo.xdmf: per surface, a temporal collection of the instantaneous wss and one grid per window.
 void WallShear::close() {
-  if (!active() || !file_) return;
-  file_.reset();
+  if (!active()) return;
+  collective_output(comm_, [&]() {
+    if (!file_) return;
+    file_->close();
+    file_.reset();
+    write_xdmf();
+  });
+}
+
+void WallShear::write_xdmf() const {
   std::ofstream x(dir_ + "/" + base_ + ".xdmf");
   const std::string h5 = base_ + ".h5:/";
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n";
@@ -312,6 +326,8 @@ void WallShear::close() {
     }
   }
   x << "</Domain>\n</Xdmf>\n";
+  x.close();
+  if (!x) throw OutputError("cannot write " + dir_ + "/" + base_ + ".xdmf (disk full?)");
 }
 
 Json WallShear::summary() const {

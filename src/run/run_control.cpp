@@ -85,6 +85,9 @@ void install_stop_handlers() {
   sigemptyset(&sa.sa_mask);
   for (int sig : {SIGTERM, SIGINT, SIGUSR1})
     sigaction(sig, &sa, nullptr);
+  // Past a file-size limit (ulimit -f) a write fails with EFBIG and is reported like a full
+  // disk (exit 5, the last checkpoint intact) instead of the signal killing the rank.
+  signal(SIGXFSZ, SIG_IGN);
 }
 
 int stop_requested(MPI_Comm comm) {

@@ -26,6 +26,26 @@ void throw_petsc(PetscErrorCode ierr, const char *file, int line) {
   throw PetscFailure(msg + " at " + file + ":" + std::to_string(line));
 }
 
+void collective_output(MPI_Comm comm, const std::function<void()> &write) {
+  std::string err;
+  try {
+    write();
+  } catch (OutputError &e) {
+    err = e.what();
+  }
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  int mine = err.empty() ? size : rank, first;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size) return;
+  int n = (int)err.size();
+  MPI_Bcast(&n, 1, MPI_INT, first, comm);
+  err.resize(n);
+  MPI_Bcast(err.data(), n, MPI_CHAR, first, comm);
+  throw OutputError(err);
+}
+
 namespace opt {
 
 static std::string key(const std::string &name) {

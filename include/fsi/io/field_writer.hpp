@@ -10,6 +10,7 @@
 // (/topology/region: 1 solid, 0 fluid).
 #pragma once
 #include "fsi/discretization/space.hpp"
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,12 @@ private:
   Vec node_vec(int bs) const;
   std::vector<std::pair<std::string, int>> names() const;
   void write_and_destroy(const char *group, const std::string &name, Vec &v);
+  // Runs a PETSc call that writes the file; a failure on any rank (disk full, directory made
+  // read-only) becomes an OutputError on every rank, without PETSc's error trace.
+  void io(const std::string &what, const std::function<PetscErrorCode()> &call) const;
+  void write_xdmf() const; // rank 0
+  void check_room() const; // collective: OutputError if the step's fields would not fit
+  std::string path() const { return dir_ + "/" + set_.base + ".h5"; }
   const Space &space_;
   std::string dir_;
   FieldSet set_;

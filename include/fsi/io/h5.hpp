@@ -13,7 +13,8 @@ namespace fsi {
 class H5File {
 public:
   enum Mode { create, open_read };
-  H5File(const std::string &path, Mode mode); // throws InputError if it cannot be opened
+  // Throws InputError if a file to read cannot be opened, OutputError if one cannot be created.
+  H5File(const std::string &path, Mode mode);
   ~H5File();
   H5File(const H5File &) = delete;
   H5File &operator=(const H5File &) = delete;
@@ -29,6 +30,8 @@ public:
   bool has_attribute(const std::string &attr) const;
   std::string get_string(const std::string &attr) const;
   void flush();
+  // Closes a file being written and reports a failure (OutputError); the destructor cannot.
+  void close();
 
 private:
   void make_groups(const std::string &name);

@@ -58,6 +58,7 @@ private:
   };
   void compute(Surface &s, const Simulation &pb, const PetscScalar *u); // u: local solution
   void close_window();
+  void write_xdmf() const; // rank 0, after the file is closed
   const Space *space_ = nullptr;
   const FluidModule *fluid_ = nullptr;
   const ExactFlow *exact_ = nullptr;
