@@ -73,9 +73,10 @@ K2.dir = K.dir  # it wrote there (-out_dir given last wins)
 steps = [int(r["step"]) for r in K2.monitor]
 check(steps == list(range(1, 41)), "monitor.csv holds steps 1..40 once each")
 
-# SIGTERM to mpirun during a 200-step run.
-fine = coarse + ["-ts_dt", "0.005"]
-R = run(wom, np=2, extra=fine + ["-checkpoint_every", "200"])
+# SIGTERM to mpirun during a 1000-step run (~8 s on the coarse pipe: 200 steps ended before the
+# signal came on a loaded machine).
+fine = coarse + ["-ts_dt", "0.001"]
+R = run(wom, np=2, extra=fine + ["-checkpoint_every", "1000"])
 out = os.path.join(K.dir, "sigterm")
 cmd = ["mpirun", "-n", "2", APP, "-options_file", scene("womersley"), "-options_file",
        preset("direct"), "-out_dir", out, "-mesh_cache_dir",
@@ -90,7 +91,7 @@ t0 = time.time()
 while time.time() - t0 < 120:
     if os.path.exists(partial) and sum(1 for _ in open(partial)) > 30:
         break
-    time.sleep(0.2)
+    time.sleep(0.02)
 p.send_signal(signal.SIGTERM)
 text, _ = p.communicate(timeout=120)
 print(text.strip().splitlines()[-1])
@@ -103,11 +104,11 @@ check(s is not None and s["converged"] is False and "SIGTERM" in s["reason"],
       "SIGTERM: summary says converged false, stopped by SIGTERM")
 if s:
     with h5py.File(os.path.join(out, "checkpoint.h5")) as f:
-        check(f.attrs["step"] == s["final_step"] and 0 < s["final_step"] < 200,
+        check(f.attrs["step"] == s["final_step"] and 0 < s["final_step"] < 1000,
               f"SIGTERM: checkpoint at the last step ({s['final_step']})")
-    S = run(wom, np=2, extra=fine + ["-checkpoint_every", "200", "-restart",
+    S = run(wom, np=2, extra=fine + ["-checkpoint_every", "1000", "-restart",
                                      os.path.join(out, "checkpoint.h5")])
     check(S.code == 0, "resumed after SIGTERM")
     compare(os.path.join(R.dir, "checkpoint.h5"), os.path.join(S.dir, "checkpoint.h5"),
-            "SIGTERM + restart vs uninterrupted (200 steps)")
+            "SIGTERM + restart vs uninterrupted (1000 steps)")
 finish()
