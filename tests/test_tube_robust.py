@@ -9,7 +9,7 @@ import os
 from fsitest import SRC, check, finish, run
 
 TUBE = os.path.join(SRC, "examples", "tube", "tube.opts")
-COARSE = ["-mesh_h", "0.002", "-ts_max_steps", "10"]
+COARSE = ["-mesh_h", "0.003", "-ts_max_steps", "10"]  # comparisons: the coarsest tube that resolves its wall
 TIGHT = ["-snes_rtol", "1e-12", "-snes_atol", "1e-14"]
 SCALES = {"solid_probe0_ux": 1e-4, "solid_probe0_uz": 1e-4, "probe0_p": 1333.2, "probe1_p": 1333.2,
           "probe2_p": 1333.2, "inlet_flux": None, "outlet_flux": None, "interface_flux": None}
