@@ -106,7 +106,7 @@ p = subprocess.Popen(cmd(d), cwd=SRC, env=ENV, stdout=subprocess.PIPE, stderr=su
                      text=True)
 partial, t0, killed = os.path.join(d, "monitor.csv.partial"), time.time(), None
 while time.time() - t0 < 120 and p.poll() is None:
-    if rows(partial) > 35:  # past the step-25 checkpoint, well before step 50's
+    if rows(partial) > 27:  # past the step-25 checkpoint (written before row 26), well before step 50's
         ranks = [int(q) for q in os.listdir("/proc") if q.isdigit() and
                  os.path.exists(f"/proc/{q}/cmdline") and
                  open(f"/proc/{q}/cmdline", "rb").read().split(b"\0")[0].endswith(b"fsi_app") and
@@ -162,7 +162,7 @@ p = subprocess.Popen(c, cwd=SRC, env=dict(ENV, HOME=d), stdout=subprocess.PIPE,
                      stderr=subprocess.STDOUT, text=True)
 partial, t0, at = os.path.join(d, "monitor.csv.partial"), time.time(), None
 while time.time() - t0 < 120 and p.poll() is None:
-    if rows(partial) > 35:
+    if rows(partial) > 27:
         at = rows(partial)
         os.chmod(d, 0o555)
         break
