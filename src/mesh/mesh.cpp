@@ -121,10 +121,15 @@ static void generate_with_gmsh(const std::string &geo, double h,
     gmsh::write(tmp);
   } catch (InputError &) {
     throw;
-  } catch (...) {
+  } catch (...) { // gmsh's own last error (a .geo's Error(...) names the bad parameter)
+    std::string err;
+    try {
+      gmsh::logger::getLastError(err);
+    } catch (...) {
+    }
     gmsh::finalize();
     throw InputError("gmsh failed to mesh " + geo + " at h = " + std::to_string(h) +
-                     ": check the .geo and the size");
+                     (err.empty() ? "" : " (" + err + ")") + ": check the .geo and the size");
   }
   gmsh::finalize();
   if (std::rename(tmp.c_str(), out.c_str()) != 0)
