@@ -13,15 +13,15 @@ import json
 import math
 import os
 import subprocess
+import sys
 import tempfile
 import time
 
 SRC = os.environ.get("FSI_SOURCE_DIR",
                      os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 APP = os.environ.get("FSI_APP", os.path.join(SRC, "build", "fsi_app"))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", OPENBLAS_NUM_THREADS="1",
-           OMPI_MCA_odls_base_sigkill_timeout="0")
+sys.path.insert(0, os.path.join(SRC, "tests"))
+from fsitest import ENV  # noqa: E402  (the tests' MPI environment, one definition)
 
 
 def scene_path(name):
