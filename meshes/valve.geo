@@ -41,8 +41,14 @@ If (!Exists(hfar)) hfar = 4 * h; EndIf
 If (!Exists(hgrow)) hgrow = 0.008; EndIf
 If (!Exists(tlayers)) tlayers = 1; EndIf
 If (!Exists(hbasew)) hbasew = 0.002; EndIf
-If (h <= 0 || hbasew <= 0 || (Exists(hbase) && hbase <= 0))
+// (gmsh's parser evaluates both sides of || and &&, so hbase is tested in its own If)
+If (h <= 0 || hbasew <= 0)
   Error("valve.geo: the sizes h, hbase and hbasew must be positive");
+EndIf
+If (Exists(hbase))
+  If (hbase <= 0)
+    Error("valve.geo: the sizes h, hbase and hbasew must be positive");
+  EndIf
 EndIf
 
 zc = stretch * rho_l;         // commissure height: the ellipsoids' centre height
