@@ -132,7 +132,7 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
   }
 
   const double m0 = MPI_Wtime();
-  std::vector<Tet> new_fluid = mesh_volume(y, btris, bmask, inward, o, rep.gap_vertices);
+  std::vector<Tet> new_fluid = mesh_volume(y, btris, bmask, inward, o, rep);
   rep.mesh_seconds = MPI_Wtime() - m0;
 
   // The new fluid cells' boundary must be the old boundary, triangle for triangle.
@@ -193,6 +193,9 @@ RemeshOptions RemeshOptions::from_options() {
   o.verbose = opt::integer("ale_remesh_verbose", 0) != 0;
   o.test_fault = (int)opt::integer("ale_remesh_test_fault", 0);
   o.gap_cells = opt::nonnegative("ale_remesh_gap_cells", 2.0);
+  o.flip_skewness = opt::nonnegative("ale_remesh_flip_skewness", 0.8);
+  if (o.flip_skewness >= 1)
+    throw InputError("-ale_remesh_flip_skewness must be below 1 (0 turns the flips off)");
   return o;
 }
 
@@ -233,8 +236,11 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space,
   s.easy_run = state.easy_run;
   s.hemo_window = state.hemo_window;
   s.lumped = state.lumped; // boundary models (a Windkessel) do not see the mesh
-  MPI_Bcast(&rep.gap_vertices, 1, MPI_LONG, 0, comm);
-  double r[11] = {(double)rep.fluid_cells_before,
+  long counts[3] = {rep.gap_vertices, rep.flips, rep.splits};
+  MPI_Bcast(counts, 3, MPI_LONG, 0, comm);
+  rep.gap_vertices = counts[0], rep.flips = counts[1], rep.splits = counts[2];
+  double r[12] = {rep.skewness_gmsh,
+                  (double)rep.fluid_cells_before,
                   (double)rep.fluid_cells_after,
                   rep.skewness_before,
                   rep.skewness_after,
@@ -245,11 +251,12 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space,
                   rep.divergence_before,
                   rep.divergence_after,
                   rep.mesh_seconds};
-  MPI_Bcast(r, 11, MPI_DOUBLE, 0, comm);
-  rep.fluid_cells_before = std::lround(r[0]), rep.fluid_cells_after = std::lround(r[1]);
-  rep.skewness_before = r[2], rep.skewness_after = r[3], rep.volume_before = r[4];
-  rep.volume_after = r[5], rep.kinetic_before = r[6], rep.kinetic_after = r[7];
-  rep.divergence_before = r[8], rep.divergence_after = r[9], rep.mesh_seconds = r[10];
+  MPI_Bcast(r, 12, MPI_DOUBLE, 0, comm);
+  rep.skewness_gmsh = r[0];
+  rep.fluid_cells_before = std::lround(r[1]), rep.fluid_cells_after = std::lround(r[2]);
+  rep.skewness_before = r[3], rep.skewness_after = r[4], rep.volume_before = r[5];
+  rep.volume_after = r[6], rep.kinetic_before = r[7], rep.kinetic_after = r[8];
+  rep.divergence_before = r[9], rep.divergence_after = r[10], rep.mesh_seconds = r[11];
   rep.memory_mb = peak_memory_mb();
   return s;
 }

@@ -274,11 +274,19 @@ double skewness_of(const std::vector<std::array<double, 3>> &x, const Tet &t) {
 std::vector<Tet> mesh_volume(std::vector<std::array<double, 3>> &x, const std::vector<Tri> &tris,
                              const std::vector<double> &mask,
                              const std::vector<std::array<double, 3>> &inward,
-                             const RemeshOptions &o, long &gap_vertices) {
+                             const RemeshOptions &o, RemeshReport &rep) {
   const auto gaps = o.gap_cells > 0 ? gap_sizes(x, tris, inward, o.gap_cells)
                                     : std::vector<std::array<double, 4>>();
-  gap_vertices = (long)gaps.size();
-  return gmsh_volume(x, tris, mask, gaps, o);
+  rep.gap_vertices = (long)gaps.size();
+  auto tets = gmsh_volume(x, tris, mask, gaps, o);
+  rep.skewness_gmsh = 0;
+  for (auto &t : tets)
+    rep.skewness_gmsh = std::max(rep.skewness_gmsh, skewness_of(x, t));
+  if (o.flip_skewness > 0) {
+    const FlipReport f = remove_slivers(x, tets, o.flip_skewness);
+    rep.flips = f.flips + f.moves, rep.splits = f.splits;
+  }
+  return tets;
 }
 
 void write_msh(const std::string &path, const std::vector<std::array<double, 3>> &x,

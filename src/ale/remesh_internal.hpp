@@ -59,10 +59,21 @@ struct NewMesh {
 };
 
 // gmsh: the fluid volume inside the boundary triangles (node k at x[k]; new nodes appended to
-// x); inward: unit normal into the fluid per triangle.  Throws RemeshError.
+// x), then the sliver removal; inward: unit normal into the fluid per triangle; records gap
+// vertices, gmsh's worst cell and the flips in rep.  Throws RemeshError.
 std::vector<Tet> mesh_volume(std::vector<Point> &x, const std::vector<Tri> &tris,
                              const std::vector<double> &mask, const std::vector<Point> &inward,
-                             const RemeshOptions &o, long &gap_vertices);
+                             const RemeshOptions &o, RemeshReport &rep);
+// Local flips (edge removal, 2-3 face flips) and, where no flip helps, interior edge splits (a
+// new vertex appended to x) on the cells of skewness above `threshold`: boundary triangles stay,
+// each move raises the worst quality it touches.  New cells have positive orientation
+// (remesh_flips.cpp).
+struct FlipReport {
+  long flips = 0, splits = 0;               // flips and edge splits (new vertices)
+  long moves = 0;                           // interior vertices moved
+  double worst_before = 0, worst_after = 0; // skewness
+};
+FlipReport remove_slivers(std::vector<Point> &x, std::vector<Tet> &tets, double threshold);
 // A gmsh 2.2 ASCII mesh (exact coordinates with 17 digits), written atomically.
 void write_msh(const std::string &path, const std::vector<Point> &x, const std::vector<Tet> &tets,
                const std::vector<double> &tet_mask, const std::vector<Tri> &tris,

@@ -213,10 +213,7 @@ void load_mesh_file(MPI_Comm comm, Mesh &mesh, const std::string &file) {
     throw InputError("mesh " + file + " is not 3D (dimension " + std::to_string(dim) + ")");
   FSI_CALL(PetscObjectSetName((PetscObject)dm, "mesh"));
 
-  PetscPartitioner part;
-  FSI_CALL(DMPlexGetPartitioner(dm, &part));
-  FSI_CALL(PetscPartitionerSetType(part, PETSCPARTITIONERPTSCOTCH));
-  FSI_CALL(PetscPartitionerSetFromOptions(part));
+  mesh.partition = set_partition(dm);
   DM dist = nullptr;
   FSI_CALL(DMPlexDistribute(dm, 0, nullptr, &dist));
   if (dist) {

@@ -2,6 +2,7 @@
 #include "fsi/boundary/boundary_condition.hpp"
 #include "fsi/run/simulation.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ const std::vector<Section> &sections() {
         {"mesh_h", "0.1", "m", "mesh size passed to the .geo as h"},
         {"mesh_params", "", "-", "further .geo parameters name=value,..."},
         {"mesh_cache_dir", "results/.mesh_cache", "-", "where meshed .geo files are cached"},
+        {"mesh_partitioner", "ptscotch", "-",
+         "cell partition over the ranks: ptscotch or metis (edge cut and balance in the header)"},
         {"mesh_max_cells", "5e7", "-",
          "refuse a -mesh_h whose cell estimate (bounding box / h^3) exceeds this"}}},
       {"Time integration (PETSc TS names)",
@@ -113,6 +116,8 @@ const std::vector<Section> &sections() {
         {"ale_remesh_every", "0", "steps", "also remesh after every N steps (tests, studies)"},
         {"ale_remesh_gap_cells", "2", "-",
          "cells across a fluid gap thinner than its boundary triangles (0: no gap sizing)"},
+        {"ale_remesh_flip_skewness", "0.8", "-",
+         "edge/face flips on new fluid cells worse than this (0: off)"},
         {"ale_remesh_verbose", "0", "-", "1: show gmsh's messages while remeshing"},
         {"ale_remesh_test_fault", "0", "-", "1: corrupt the boundary given to gmsh (tests)"},
         {"ale_ksp_*, ale_pc_*", "cg, gamg", "-", "the mesh-motion linear solver"}}},
@@ -218,6 +223,12 @@ void print_run_header(MPI_Comm comm, const Scene &scene, const Mesh &mesh, const
               "pressure %d\n",
               scene.name.c_str(), size, mesh.source.c_str(), (int)mesh.cells_global,
               (int)mesh.vertices_global, (int)space.n_velocity, (int)space.n_pressure);
+  const PartitionQuality &pq = mesh.partition;
+  if (size > 1 && pq.edge_cut >= 0)
+    PetscPrintf(comm,
+                "  partition: %s, %ld of %ld cell faces cut (%.2f %%), largest part %.3f x mean\n",
+                pq.method.c_str(), pq.edge_cut, pq.faces,
+                100.0 * pq.edge_cut / std::max(1L, pq.faces), pq.imbalance);
   for (auto &m : sim.system().modules())
     PetscPrintf(comm, "  physics: %s on %d local cells (rank 0)\n", m->name().c_str(),
                 (int)m->n_cells());

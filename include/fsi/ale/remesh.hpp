@@ -20,6 +20,8 @@
 // and after and reported (RemeshReport, remesh.csv), see docs/remeshing.md.
 //   -ale_remesh_hmax H     largest new cell size [m] (default: from the boundary only)
 //   -ale_remesh_every N    also remesh after every N-th step (tests, studies; default 0)
+//   -ale_remesh_flip_skewness S   edge and face flips on gmsh's cells worse than S (default
+//                          0.8; 0 = off): gmsh leaves slivers on four boundary vertices
 #pragma once
 #include "fsi/io/run_state.hpp"
 #include "fsi/mesh/mesh.hpp"
@@ -40,6 +42,7 @@ struct RemeshOptions {
   bool verbose = false; // -ale_remesh_verbose
   int test_fault = 0;   // -ale_remesh_test_fault 1: a boundary vertex thrown across the domain
   double gap_cells = 2; // -ale_remesh_gap_cells: cells across a gap thinner than its triangles
+  double flip_skewness = 0.8; // -ale_remesh_flip_skewness: flip cells worse than this (0: off)
   static RemeshOptions from_options(); // read at start, so that a typo fails before step 1
 };
 
@@ -53,7 +56,9 @@ struct RemeshReport {
   double divergence_before = 0, divergence_after = 0; // ||div v|| / ||grad v|| (L2, fluid)
   double mesh_seconds = 0, seconds = 0; // gmsh alone; the whole remesh (with the new run)
   double memory_mb = 0;                 // rank 0's peak resident memory after the remesh
-  long gap_vertices = 0; // boundary vertices facing a gap thinner than their triangles
+  long gap_vertices = 0;      // boundary vertices facing a gap thinner than their triangles
+  double skewness_gmsh = 0;   // worst new fluid cell as gmsh made it, before the flips
+  long flips = 0, splits = 0; // sliver removal: flips and vertex moves; edge splits
 };
 
 // Mesh the fluid again from the boundary of `mesh` at the positions of `state` (the state at the

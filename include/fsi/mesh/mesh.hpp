@@ -4,6 +4,7 @@
 // on rank 0 and cached by content, so a scene states its mesh and its resolution in one place.
 #pragma once
 #include "fsi/common.hpp"
+#include "fsi/mesh/partition.hpp"
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@ struct Mesh {
   std::string source; // the .msh actually read
   PetscInt cells_global = 0;
   PetscInt vertices_global = 0;
+  PartitionQuality partition; // how the cells were split over the ranks (-mesh_partitioner)
 
   ~Mesh();
   // Cells of the local mesh that carry physical volume `name` (all local cells if name empty).
