@@ -183,7 +183,9 @@ const std::vector<Section> &sections() {
        {{"snes_*, ksp_*, pc_*", "PETSc's", "-", "Newton and linear solver of the coupled system"},
         {"fieldsplit_velocity_pc_type", "", "-", "fieldsplit: split velocity into fluid | solid"},
         {"fieldsplit_pressure_pc_type", "", "-", "pcd: convection-aware Schur preconditioner"},
-        {"jac_*", "", "-", "options of the Jacobian matrix (prefix jac_)"}}},
+        {"jac_*", "", "-", "options of the Jacobian matrix (prefix jac_)"},
+        {"newton_inexact_gamma", "0 (off)", "-",
+         "linear solves only to gamma x the Newton target (|F0| snes_rtol), >= ksp_rtol"}}},
   };
   return s;
 }

@@ -74,6 +74,11 @@ private:
   std::unique_ptr<FluidSolidSplit> split_;
   bool rigid_modes_ = false;
   long pattern_every_ = 0, solves_ = 0; // -sim_pattern_rebuild_every N (tests the rebuild path)
+  // Inexact Newton aimed at -snes_rtol (-newton_inexact_gamma G, 0 = off): each linear solve
+  // reduces the residual only to G x the Newton target, |F_0| snes_rtol, never tighter than
+  // -ksp_rtol (ksp_rtol_min_) nor looser than 0.5.
+  double inexact_gamma_ = 0, ksp_rtol_min_ = 0, newton_f0_ = 0;
+  static PetscErrorCode inexact_monitor(SNES, PetscInt, PetscReal, void *);
   Vec F_ = nullptr, Uloc_ = nullptr, Floc_ = nullptr;
   Mat J_ = nullptr;
   SNES snes_ = nullptr;
