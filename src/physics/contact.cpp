@@ -41,7 +41,7 @@ std::string ContactModule::name() const {
   return s;
 }
 
-std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius) {
+std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius, bool all) {
   ContactSurface &S = *surface_;
   S.bin(radius);
   std::vector<Pair> pairs;
@@ -57,10 +57,12 @@ std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius) {
       const auto &tr = S.triangle(t);
       TriRegion region;
       const double d = point_triangle_distance(S.x(n), S.x(tr[0]), S.x(tr[1]), S.x(tr[2]), region);
+      if (all && d < radius) pairs.push_back({n, t, d, region});
       if (d < best[ct].d) best[ct] = {n, t, d, region};
     });
-    for (const Pair &b : best)
-      if (b.tri >= 0) pairs.push_back(b);
+    if (!all)
+      for (const Pair &b : best)
+        if (b.tri >= 0) pairs.push_back(b);
   }
   return pairs;
 }
@@ -80,13 +82,22 @@ template <class F> void ContactModule::for_each_active(F &&f) {
 
 void ContactModule::begin_solve(const StepContext &ctx) {
   surface_->update(ctx);
-  pending_ = pattern_;
+  // The pattern must hold every pair within offset + margin (each node's nearest triangle per
+  // piece).  When it lacks one, it grows to every node-triangle pair within offset + 2 margin,
+  // nearest or not, so that it does not grow again until the surfaces have moved by a margin:
+  // each new pattern is a new matrix and a new factorisation (the opening valve rebuilt it 9
+  // times in 6 steps, as nodes slid from one nearest triangle to the next).
+  int grew = 0, any;
   for (const Pair &pr : pairs_within(p_.offset + p_.margin))
     for (int k : surface_->triangle(pr.tri))
-      pending_.insert(key(pr.node, k));
-  int grew = pending_.size() > pattern_.size(), any;
+      grew = grew || !pattern_.count(key(pr.node, k));
   MPI_Allreduce(&grew, &any, 1, MPI_INT, MPI_MAX, surface_->comm());
   changed_ = any != 0;
+  pending_ = pattern_;
+  if (changed_)
+    for (const Pair &pr : pairs_within(p_.offset + 2 * p_.margin, true))
+      for (int k : surface_->triangle(pr.tri))
+        pending_.insert(key(pr.node, k));
 }
 
 void ContactModule::pattern_built() {

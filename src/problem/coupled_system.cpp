@@ -165,6 +165,9 @@ void CoupledSystem::step_size_changed() {
   if (lag == -1) FSI_CALL(SNESSetLagJacobian(snes_, -2));
   FSI_CALL(SNESGetLagPreconditioner(snes_, &lag));
   if (lag == -1) FSI_CALL(SNESSetLagPreconditioner(snes_, -2));
+  // A preconditioner lagged over steps (a factorisation reused by GMRES) was built for the old
+  // step's matrix, and a cut step follows a failed solve: build it anew in the next solve.
+  if (lag > 1) rebuild_preconditioner_ = true;
 }
 
 SolveStats CoupledSystem::solve(Vec U) {
@@ -196,8 +199,15 @@ SolveStats CoupledSystem::solve(Vec U) {
 
   FSI_CALL(PetscLogStagePush(Stages::get().solve));
   inverted_ = false;
+  PetscInt lag = 0;
+  if (rebuild_preconditioner_) { // -2: at the next Jacobian, then back to the lag
+    FSI_CALL(SNESGetLagPreconditioner(snes_, &lag));
+    FSI_CALL(SNESSetLagPreconditioner(snes_, -2));
+    rebuild_preconditioner_ = false;
+  }
   const double t0 = MPI_Wtime();
   FSI_CALL(SNESSolve(snes_, nullptr, U));
+  if (lag > 1) FSI_CALL(SNESSetLagPreconditioner(snes_, lag));
   cost_.nonlinear_solve_time += MPI_Wtime() - t0;
   FSI_CALL(PetscLogStagePop());
   SolveStats s;

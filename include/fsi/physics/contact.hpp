@@ -63,7 +63,9 @@ private:
     TriRegion region; // where on the triangle the closest point lies
   };
   // Node-triangle pairs closer than `radius`: the nearest triangle of each other piece.
-  std::vector<Pair> pairs_within(double radius);
+  std::vector<Pair>
+  pairs_within(double radius,
+               bool all = false); // all: every triangle in range, not the nearest per piece
   // Calls f(nodes, penetration, node weight, g, H) for every pair closer than the offset, with
   // the distance's gradient g and Hessian H in the 12 coordinates of nodes (node, triangle).
   template <class F> void for_each_active(F &&f);

@@ -83,6 +83,7 @@ private:
   Mat J_ = nullptr;
   SNES snes_ = nullptr;
   bool inverted_ = false;
+  bool rebuild_preconditioner_ = false; // after a step-size change, with a lagged preconditioner
   std::vector<std::pair<PetscInt, double>> bc_values_;
   StepContext ctx_;
   CostCounters cost_;
