@@ -51,8 +51,8 @@ def interface_triangles(msh):
 # 1. Several remeshes, with the sliver flips on every cell worse than 0.6 (default 0.8: gmsh's
 # cells here stay below it), so that they run and must keep the volume, the energy and the
 # interface triangles.
-ra = run(BLOCK, extra=["-ts_max_time", "0.06", "-out_fields_every", "3",
-                       "-ale_remesh_flip_skewness", "0.6"])
+FLIPS = ["-ale_remesh_flip_skewness", "0.6"]
+ra = run(BLOCK, extra=["-ts_max_time", "0.06", "-out_fields_every", "3"] + FLIPS)
 check(ra.code == 0 and ra.summary["converged"], "12 steps of the pushed block converge")
 if ra.code == 0:
     rem = csv_rows(os.path.join(ra.dir, "remesh.csv"))
@@ -116,10 +116,11 @@ def compare_runs(a, b, first, cols=("inlet_p", "probe0_vx", "fluid_volume")):
     return worst
 
 
-rb = run(BLOCK, extra=["-ts_max_time", "0.03", "-checkpoint_every", "6"])
+rb = run(BLOCK, extra=["-ts_max_time", "0.03", "-checkpoint_every", "6"] + FLIPS)
 check(rb.code == 0 and rb.summary["remesh"]["count"] >= 1, "6 steps with remeshes and a checkpoint")
 if rb.code == 0 and ra.code == 0:
-    rc = run(BLOCK, extra=["-ts_max_time", "0.06", "-restart", os.path.join(rb.dir, "checkpoint.h5")])
+    rc = run(BLOCK, extra=["-ts_max_time", "0.06", "-restart", os.path.join(rb.dir, "checkpoint.h5")]
+             + FLIPS)
     check(rc.code == 0 and rc.summary["remesh"]["count"] >= 1,
           "the resumed pushed block runs and remeshes again")
     if rc.code == 0:
