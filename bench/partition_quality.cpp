@@ -13,6 +13,14 @@ int main(int argc, char **argv) {
     std::fprintf(stderr, "usage: %s MESH.msh [PARTS ...]\n", argv[0]);
     return 2;
   }
+  if (FILE *f = std::fopen(argv[1], "r"))
+    std::fclose(f);
+  else {
+    std::fprintf(stderr,
+                 "fsi_partition_quality: error: cannot read mesh %s: give a gmsh .msh file\n",
+                 argv[1]);
+    return 2;
+  }
   int pargc = 1;
   PetscInitialize(&pargc, &argv, nullptr, nullptr);
   int rc = 0;

@@ -10,6 +10,7 @@
 // edges and faces change, so the boundary triangles -- and the conformity with the solid --
 // stay as they are; a flip is taken only if it raises the worst quality of the cells it
 // replaces.  Quality: V / V_regular(circumradius) = 1 - skewness, negative when inverted.
+#include "fsi/ale/mesh_motion.hpp"
 #include "remesh_internal.hpp"
 
 #include <cmath>
@@ -27,29 +28,13 @@ double orient(const Point &a, const Point &b, const Point &c, const Point &d) {
          u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
-// Signed quality of (a, b, c, d): positive for orient > 0.
+// Signed quality of (a, b, c, d): 1 - skewness (the remesh trigger's measure), negative when
+// orient < 0.
 double quality(const Point &a, const Point &b, const Point &c, const Point &d) {
-  const double det = orient(a, b, c, d);
-  double e[3][3], r[3];
-  for (int d3 = 0; d3 < 3; ++d3)
-    e[0][d3] = b[d3] - a[d3], e[1][d3] = c[d3] - a[d3], e[2][d3] = d[d3] - a[d3];
-  for (int i = 0; i < 3; ++i)
-    r[i] = 0.5 * (e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
-  if (det == 0) return 0;
-  // Circumcentre offset c = E^{-1} r by Cramer's rule.
-  double cc[3];
-  for (int k = 0; k < 3; ++k) {
-    double m[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        m[i][j] = j == k ? r[i] : e[i][j];
-    cc[k] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-             m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-             m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
-            det;
-  }
-  const double R = std::sqrt(cc[0] * cc[0] + cc[1] * cc[1] + cc[2] * cc[2]);
-  return det / 6 / (8 * std::sqrt(3.0) / 27 * R * R * R);
+  const double P[4][3] = {
+      {a[0], a[1], a[2]}, {b[0], b[1], b[2]}, {c[0], c[1], c[2]}, {d[0], d[1], d[2]}};
+  const double q = 1 - tet_skewness(P);
+  return orient(a, b, c, d) < 0 ? -q : q;
 }
 
 // Pattern search from `at` for the point where worst(p) is largest: steps along the axes, halved
@@ -74,7 +59,7 @@ struct Flipper {
   std::vector<Point> &x;
   std::vector<Tet> &tets;
   std::vector<char> alive;
-  std::vector<std::vector<int>> of_vertex; // cells per vertex (dead ones pruned lazily)
+  std::vector<std::vector<int>> of_vertex; // cells per vertex, dead ones included (alive says)
 
   Flipper(std::vector<Point> &x_, std::vector<Tet> &t) : x(x_), tets(t) {
     alive.assign(tets.size(), 1);
@@ -295,11 +280,8 @@ FlipReport remove_slivers(std::vector<Point> &x, std::vector<Tet> &tets, double 
   }
   auto bad = [&](int k) { return F.alive[k] && F.q(k) < 1 - threshold; };
   std::vector<int> queue;
-  for (size_t k = 0; k < tets.size(); ++k) {
-    const double s = 1 - std::abs(F.q((int)k));
-    rep.worst_before = std::max(rep.worst_before, s);
+  for (size_t k = 0; k < tets.size(); ++k)
     if (bad((int)k)) queue.push_back((int)k);
-  }
   // Each accepted flip raises the worst quality of the cells it touches, so this ends; the cap
   // on passes bounds the time on a pathological boundary.
   for (int pass = 0; pass < 20 && !queue.empty(); ++pass) {
@@ -362,10 +344,7 @@ FlipReport remove_slivers(std::vector<Point> &x, std::vector<Tet> &tets, double 
   std::vector<Tet> kept;
   kept.reserve(tets.size());
   for (size_t k = 0; k < tets.size(); ++k)
-    if (F.alive[k]) {
-      kept.push_back(tets[k]);
-      rep.worst_after = std::max(rep.worst_after, 1 - std::abs(F.q((int)k)));
-    }
+    if (F.alive[k]) kept.push_back(tets[k]);
   tets.swap(kept);
   return rep;
 }

@@ -69,9 +69,8 @@ std::vector<Tet> mesh_volume(std::vector<Point> &x, const std::vector<Tri> &tris
 // each move raises the worst quality it touches.  New cells have positive orientation
 // (remesh_flips.cpp).
 struct FlipReport {
-  long flips = 0, splits = 0;               // flips and edge splits (new vertices)
-  long moves = 0;                           // interior vertices moved
-  double worst_before = 0, worst_after = 0; // skewness
+  long flips = 0, splits = 0; // flips and edge splits (new vertices)
+  long moves = 0;             // interior vertices moved
 };
 FlipReport remove_slivers(std::vector<Point> &x, std::vector<Tet> &tets, double threshold);
 // A gmsh 2.2 ASCII mesh (exact coordinates with 17 digits), written atomically.

@@ -110,7 +110,7 @@ PartitionQuality set_partition(DM dm) {
   }
   const CellGraph g = cell_graph(dm); // collective; empty where no cells
   std::vector<PetscInt> sizes(size, 0), points;
-  double qv[5] = {0, 0, 0, 0, 0};
+  double qv[4] = {0, 0, 0, 0};
   if (holds) {
     const std::vector<int> part = partition_graph(g, size, method);
     q = partition_quality(g, part, size, method);
@@ -120,7 +120,7 @@ PartitionQuality set_partition(DM dm) {
     qv[0] = (double)q.cells, qv[1] = (double)q.faces, qv[2] = (double)q.edge_cut;
     qv[3] = q.imbalance;
   }
-  MPI_Allreduce(MPI_IN_PLACE, qv, 5, MPI_DOUBLE, MPI_SUM, comm);
+  MPI_Allreduce(MPI_IN_PLACE, qv, 4, MPI_DOUBLE, MPI_SUM, comm);
   q.method = method, q.parts = size;
   q.cells = (long)qv[0], q.faces = (long)qv[1], q.edge_cut = (long)qv[2], q.imbalance = qv[3];
   FSI_CALL(PetscPartitionerSetType(pp, PETSCPARTITIONERSHELL));
