@@ -67,7 +67,7 @@ int run(MPI_Comm comm) {
   std::vector<std::string> field_parts{names.fields}; // one per mesh the run was on
   StepControl control = StepControl::from_options(scene.time.dt);
   if (resume) {
-    control.resume(resume->dt, resume->easy_run);
+    control.resume(resume->dt, resume->easy_run, resume->error_prev);
     PetscPrintf(comm, "fsi_app: resumed from %s at step %ld, t = %.6e s, dt = %.3e s\n",
                 restart.c_str(), sim->step_index(), sim->time(), control.dt);
   }
@@ -90,6 +90,7 @@ int run(MPI_Comm comm) {
     RunState s = sim->capture();
     s.dt = control.dt;
     s.easy_run = control.easy_run;
+    s.error_prev = control.error_prev;
     s.mesh_file = mesh_file;
     s.remeshes = remeshes;
     return s;
@@ -104,7 +105,8 @@ int run(MPI_Comm comm) {
   bool options_checked = false;
   install_stop_handlers();
   try {
-    while (sim->time() < t_end - 1e-9 * scene.time.dt) {
+    while (sim->time() < t_end - 1e-9 * scene.time.dt &&
+           (scene.time.step_cap == 0 || sim->step_index() < scene.time.step_cap)) {
       double dt = control.dt;
       if (t_end - sim->time() < dt * (1 - 1e-9)) dt = t_end - sim->time(); // land on t_end
       sim->set_dt(dt);

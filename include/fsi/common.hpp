@@ -28,6 +28,13 @@ struct RemeshNeeded : DistortionError {
   using DistortionError::DistortionError;
 };
 
+// A converged step whose local error estimate is above tolerance: retried with a smaller dt.
+struct StepRejected : std::runtime_error {
+  double error;
+  explicit StepRejected(double e)
+      : std::runtime_error("error estimate above tolerance"), error(e) {}
+};
+
 struct PetscFailure : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

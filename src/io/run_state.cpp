@@ -31,6 +31,7 @@ void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write
         f.set("time", time);
         f.set("dt", dt);
         f.set("easy_run", (double)easy_run);
+        f.set("error_prev", error_prev);
         f.set("remeshes", (double)remeshes);
         if (!mesh_file.empty()) f.set("mesh_file", mesh_file);
         f.write("/dofs/keys", dofs.keys, 4);
@@ -91,7 +92,8 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
   MPI_Comm_rank(comm, &rank);
   RunState s;
   s.scene = scene;
-  double meta[6] = {0, 0, 0, 0, 0, 0}; // step, time, dt, easy_run, dof count, remeshes
+  // step, time, dt, easy_run, dof count, remeshes, error_prev
+  double meta[7] = {0, 0, 0, 0, 0, 0, 0};
   std::string err;
   if (rank == 0) {
     try {
@@ -108,6 +110,7 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
       meta[2] = f.get("dt");
       meta[3] = f.get("easy_run");
       if (f.has_attribute("remeshes")) meta[5] = f.get("remeshes");
+      if (f.has_attribute("error_prev")) meta[6] = f.get("error_prev");
       if (f.has_attribute("mesh_file")) s.mesh_file = f.get_string("mesh_file");
       s.dofs.keys = f.read("/dofs/keys");
       s.dofs.values = f.read("/dofs/state");
@@ -152,7 +155,7 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
     MPI_Bcast(err.data(), len, MPI_CHAR, 0, comm);
     throw InputError(err);
   }
-  MPI_Bcast(meta, 6, MPI_DOUBLE, 0, comm);
+  MPI_Bcast(meta, 7, MPI_DOUBLE, 0, comm);
   s.remeshes = std::lround(meta[5]);
   int nm = (int)s.mesh_file.size();
   MPI_Bcast(&nm, 1, MPI_INT, 0, comm);
@@ -183,6 +186,7 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
   s.time = meta[1];
   s.dt = meta[2];
   s.easy_run = std::lround(meta[3]);
+  s.error_prev = meta[6];
   s.n_dofs = std::lround(meta[4]);
   return s;
 }

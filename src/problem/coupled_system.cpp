@@ -2,6 +2,8 @@
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
 
+#include <cmath>
+
 namespace fsi {
 
 static PetscErrorCode residual_cb(SNES snes, Vec U, Vec F, void *ctx) {
@@ -159,7 +161,7 @@ void CoupledSystem::setup_solver() {
   create_solver();
 }
 
-void CoupledSystem::step_size_changed() {
+void CoupledSystem::step_size_changed(double dt) {
   PetscInt lag;
   FSI_CALL(SNESGetLagJacobian(snes_, &lag));
   if (lag == -1) FSI_CALL(SNESSetLagJacobian(snes_, -2));
@@ -167,10 +169,17 @@ void CoupledSystem::step_size_changed() {
   if (lag == -1) FSI_CALL(SNESSetLagPreconditioner(snes_, -2));
   // A preconditioner lagged over steps (a factorisation reused by GMRES) was built for the old
   // step's matrix, and a cut step follows a failed solve: build it anew in the next solve.
-  if (lag > 1) rebuild_preconditioner_ = true;
+  // Error-controlled steps change dt by small factors nearly every step: that old LU still
+  // preconditions well, a halved or doubled step's does not.
+  if (lag > 1 &&
+      !(preconditioner_dt_ > 0 && std::fabs(std::log(dt / preconditioner_dt_)) < std::log(1.5))) {
+    rebuild_preconditioner_ = true;
+    preconditioner_dt_ = dt;
+  }
 }
 
 SolveStats CoupledSystem::solve(Vec U) {
+  if (preconditioner_dt_ == 0) preconditioner_dt_ = ctx_.dt; // the first one is built for it
   bool changed = pattern_every_ > 0 && ++solves_ % pattern_every_ == 0;
   // Dirichlet values into the initial guess.
   PetscScalar *u;

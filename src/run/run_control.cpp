@@ -11,7 +11,17 @@ namespace fsi {
 bool attempt_step(MPI_Comm comm, Simulation &sim, StepControl &control, StepStats &s) {
   const double dt = sim.dt();
   try {
-    s = sim.step();
+    s = sim.step(control.error_tolerance());
+  } catch (StepRejected &e) {
+    if (!control.reject(e.error))
+      throw SolveError("the local error estimate stays above -ts_rtol/-ts_atol (" +
+                       std::to_string(e.error) + " x) at the smallest step -ts_adapt_dt_min " +
+                       std::to_string(control.dt_min) + " s: loosen the tolerances");
+    PetscPrintf(comm,
+                "fsi_app: step %ld rejected: error estimate %.2f x the tolerance with dt = %.4e s; "
+                "retrying with dt = %.4e s\n",
+                sim.step_index() + 1, e.error, dt, control.dt);
+    return false;
   } catch (DistortionError &) {
     throw;
   } catch (SolveError &e) {
@@ -24,7 +34,7 @@ bool attempt_step(MPI_Comm comm, Simulation &sim, StepControl &control, StepStat
                 sim.step_index() + 1, dt, e.what(), control.dt);
     return false;
   }
-  control.accepted(s.newton);
+  control.accepted(s.newton, s.error);
   return true;
 }
 

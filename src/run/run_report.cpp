@@ -143,11 +143,20 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
       .set("converged", o.converged)
       .set("reason", o.reason);
   Json sc;
-  sc.set("adapt", control.enabled ? "cut" : "none")
+  sc.set("adapt", control.mode == StepControl::error      ? "error"
+                  : control.mode == StepControl::cut_only ? "cut"
+                                                          : "none")
       .set("failed_steps", failed_)
       .set("cuts", control.cuts)
       .set("grows", control.grows)
-      .set("dt_final", control.dt);
+      .set("dt_final", control.dt)
+      .set("dt_smallest", control.dt_smallest)
+      .set("dt_largest", control.dt_largest);
+  if (control.mode == StepControl::error)
+    sc.set("rejections", control.rejections)
+        .set("rtol", control.tol.rtol)
+        .set("atol", control.tol.atol)
+        .set("dt_max", control.dt_max);
   j.set("step_control", sc);
   if (!remeshes_.empty() || sim.ale().remeshing()) {
     Json r;

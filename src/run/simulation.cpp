@@ -262,7 +262,7 @@ void Simulation::initialize(const std::string &ic) {
 void Simulation::set_dt(double dt) {
   if (dt == time_->dt()) return;
   time_->set_dt(dt);
-  system_->step_size_changed();
+  system_->step_size_changed(dt);
 }
 
 // Dirichlet data at t_{n+1}: velocities on the nodes' positions at t_{n+1}, prescribed
@@ -274,7 +274,7 @@ void Simulation::dirichlet_data(double t_np1) {
   time_->velocities_for_displacements(disp_values_, values);
 }
 
-StepStats Simulation::step() {
+StepStats Simulation::step(const StepErrorTolerance *tol) {
   const double dt = time_->dt(), t_np1 = time_->time() + dt;
   const long next = time_->step_index() + 1;
   const bool steady = scene_.time.steady;
@@ -335,6 +335,10 @@ StepStats Simulation::step() {
     throw SolveError(std::string("Newton did not converge at step ") + std::to_string(next) +
                      " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[r.reason] +
                      "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
+  if (tol && !steady && time_->step_index() > 0) {
+    s.error = time_->error_estimate(U_, space_.is_velocity, tol->atol, tol->rtol);
+    if (s.error > 1) throw StepRejected(s.error);
+  }
   bcs_->accept_step(); // lumped models advance with the converged iterate's flux
   time_->advance(U_);
   ale_->accept();

@@ -1,6 +1,7 @@
 #include "fsi/time/generalized_alpha.hpp"
 #include "fsi/scene/options.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fsi {
@@ -22,7 +23,12 @@ TimeParams TimeParams::from_options() {
   // -ts_max_steps, when given, wins over the scene's -ts_max_time (handy to shorten a run).
   const bool by_time = opt::has("ts_max_time");
   const double t_end = by_time ? opt::positive("ts_max_time", 1.0) : 0.0;
-  if (opt::has("ts_max_steps") || !by_time) {
+  const bool adaptive = opt::choice("ts_adapt_type", "cut", {"cut", "error", "none"}) == "error";
+  if (adaptive && by_time && opt::has("ts_max_steps")) {
+    tp.t_end = t_end;
+    tp.max_steps = tp.step_cap = opt::integer("ts_max_steps", 1);
+    if (tp.step_cap < 1) throw InputError("option -ts_max_steps must be >= 1");
+  } else if (opt::has("ts_max_steps") || !by_time) {
     tp.max_steps = opt::integer("ts_max_steps", 10);
     if (tp.max_steps < 1) throw InputError("option -ts_max_steps must be >= 1");
     tp.t_end = tp.max_steps * tp.dt;
@@ -122,6 +128,32 @@ void GeneralizedAlpha::velocities_for_displacements(
   FSI_CALL(VecRestoreArrayRead(Vloc_, &v));
   FSI_CALL(VecRestoreArrayRead(Aloc_, &a));
   FSI_CALL(VecRestoreArrayRead(Dloc_, &d));
+}
+
+double GeneralizedAlpha::error_estimate(Vec U, IS is, double atol, double rtol) const {
+  PetscInt n, start;
+  const PetscInt *idx;
+  const PetscScalar *u, *v, *a;
+  FSI_CALL(VecGetOwnershipRange(U, &start, nullptr));
+  FSI_CALL(ISGetLocalSize(is, &n));
+  FSI_CALL(ISGetIndices(is, &idx));
+  FSI_CALL(VecGetArrayRead(U, &u));
+  FSI_CALL(VecGetArrayRead(Vn_, &v));
+  FSI_CALL(VecGetArrayRead(An_, &a));
+  double m[2] = {0, 0}; // max |U - predictor|, max |U|
+  for (PetscInt k = 0; k < n; ++k) {
+    const PetscInt i = idx[k] - start;
+    const double ui = PetscRealPart(u[i]);
+    m[0] = std::max(m[0], std::fabs(ui - PetscRealPart(v[i]) - dt_ * PetscRealPart(a[i])));
+    m[1] = std::max(m[1], std::fabs(ui));
+  }
+  FSI_CALL(VecRestoreArrayRead(U, &u));
+  FSI_CALL(VecRestoreArrayRead(Vn_, &v));
+  FSI_CALL(VecRestoreArrayRead(An_, &a));
+  FSI_CALL(ISRestoreIndices(is, &idx));
+  double g[2];
+  MPI_Allreduce(m, g, 2, MPI_DOUBLE, MPI_MAX, PetscObjectComm((PetscObject)U));
+  return g[0] / (atol + rtol * g[1]);
 }
 
 void GeneralizedAlpha::advance(Vec U) {

@@ -2,12 +2,20 @@
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fsi {
 
+// The estimate v_{n+1} - (v_n + dt a_n) = gamma dt (a_{n+1} - a_n) shrinks like dt^2: the
+// controller's exponents are those of an error of order 2 (Gustafsson's PI: kI = 0.3/2,
+// kP = 0.4/2; a rejection uses the plain 1/2).
+static constexpr double order = 2, kI = 0.3 / order, kP = 0.4 / order;
+
 StepControl StepControl::from_options(double nominal_dt) {
   StepControl c;
-  c.enabled = opt::choice("ts_adapt_type", "cut", {"cut", "none"}) == "cut";
+  const std::string type = opt::choice("ts_adapt_type", "cut", {"cut", "error", "none"});
+  c.mode = type == "error" ? error : type == "cut" ? cut_only : none;
+  c.enabled = c.mode != none;
   c.nominal = c.dt = nominal_dt;
   c.factor = opt::positive("ts_adapt_scale_solve_failed", 0.5);
   if (c.factor >= 1)
@@ -18,6 +26,15 @@ StepControl StepControl::from_options(double nominal_dt) {
   c.grow_after = opt::integer("step_grow_after", 3);
   c.easy_newton = opt::integer("step_easy_newton", 4);
   if (c.grow_after < 1) throw InputError("option -step_grow_after must be >= 1");
+  if (c.mode == error) {
+    c.tol.rtol = opt::positive("ts_rtol", 0.01);
+    c.tol.atol = opt::positive("ts_atol", 1e-3);
+    c.dt_max = opt::positive("ts_adapt_dt_max", 10 * nominal_dt);
+    if (c.dt_max < nominal_dt)
+      throw InputError("option -ts_adapt_dt_max is smaller than the time step -ts_dt");
+    c.safety = opt::positive("ts_adapt_safety", 0.9);
+    if (c.safety > 1) throw InputError("option -ts_adapt_safety must be in (0, 1], e.g. 0.9");
+  }
   return c;
 }
 
@@ -29,7 +46,30 @@ bool StepControl::cut() {
   return true;
 }
 
-void StepControl::accepted(long newton) {
+bool StepControl::reject(double e) {
+  const double f = std::clamp(safety * std::pow(e, -1 / order), 0.1, 0.9);
+  if (dt * f < dt_min * (1 - 1e-12)) return false;
+  dt *= f;
+  ++rejections;
+  return true;
+}
+
+void StepControl::accepted(long newton, double e) {
+  dt_smallest = dt_smallest > 0 ? std::min(dt_smallest, dt) : dt;
+  dt_largest = std::max(dt_largest, dt);
+  if (mode == error) {
+    if (e < 0) return; // no estimate (first step): keep dt
+    e = std::max(e, 1e-8);
+    double f = safety * std::pow(e, -kI) * (error_prev > 0 ? std::pow(error_prev / e, kP) : 1.0);
+    error_prev = e;
+    f = std::clamp(f, 0.2, 2.0);
+    // Small growth is not worth it: an unchanged dt keeps a lagged preconditioner valid.
+    if (f >= 1 && f < 1.2) return;
+    const double next = std::clamp(dt * f, dt_min, dt_max);
+    if (next > dt) ++grows;
+    dt = next;
+    return;
+  }
   if (dt >= nominal) return;
   easy_run = newton <= easy_newton ? easy_run + 1 : 0;
   if (easy_run < grow_after) return;

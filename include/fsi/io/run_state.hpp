@@ -15,8 +15,9 @@ struct RunState {
   std::string scene; // physics and time scheme: a state only fits a run of the same scene
   long step = 0;
   double time = 0, dt = 0;
-  long easy_run = 0; // step control's count of easy steps
-  long n_dofs = 0;   // global dof count of the run that captured it
+  long easy_run = 0;     // step control's count of easy steps
+  double error_prev = 0; // error control's last scaled error estimate (its PI memory)
+  long n_dofs = 0;       // global dof count of the run that captured it
   // After a remesh: the mesh the state lives on (a .msh path relative to the checkpoint's
   // directory, or absolute) and how many remeshes led to it; empty: the scene's mesh.
   std::string mesh_file;

@@ -57,7 +57,9 @@ public:
   // Solve R(U) = 0 from the initial guess U (Dirichlet values are put into U first).
   SolveStats solve(Vec U);
   // A new step size invalidates a Jacobian the scene computes once (-snes_lag_jacobian -2).
-  void step_size_changed();
+  // The step size became dt: a lagged Jacobian is recomputed; a preconditioner lagged over steps
+  // is rebuilt when dt has moved by more than 1.5x from the one it was last rebuilt for.
+  void step_size_changed(double dt);
   const CostCounters &cost() const { return cost_; }
 
   // SNES callbacks; residual() returns false where a solid element inverted.
@@ -84,6 +86,7 @@ private:
   SNES snes_ = nullptr;
   bool inverted_ = false;
   bool rebuild_preconditioner_ = false; // after a step-size change, with a lagged preconditioner
+  double preconditioner_dt_ = 0;        // the dt of the last such rebuild
   std::vector<std::pair<PetscInt, double>> bc_values_;
   StepContext ctx_;
   CostCounters cost_;

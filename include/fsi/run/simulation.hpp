@@ -24,6 +24,7 @@
 #include "fsi/post/wall_shear.hpp"
 #include "fsi/problem/coupled_system.hpp"
 #include "fsi/time/generalized_alpha.hpp"
+#include "fsi/time/step_control.hpp"
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +51,7 @@ struct StepStats {
   PetscInt newton = 0, krylov = 0;
   int geometry_iterations = 0; // extra solves on an updated mesh (geometry implicit)
   double geometry_change = 0;  // last relative mesh change
+  double error = -1;           // scaled local error estimate (-1: not computed)
 };
 
 class Simulation {
@@ -60,8 +62,10 @@ public:
   Simulation &operator=(const Simulation &) = delete;
 
   // One step of size dt() (a load step in static mode).  Throws SolveError (Newton failed, a
-  // solid element inverted) or DistortionError (fluid mesh past its quality limits).
-  StepStats step();
+  // solid element inverted) or DistortionError (fluid mesh past its quality limits); with
+  // tolerances, also StepRejected when the local error estimate is above them (not on the
+  // run's first step, whose history is the initial condition's).
+  StepStats step(const StepErrorTolerance *tol = nullptr);
   void set_dt(double dt);
   // The mesh was just remeshed: its first step does not ask for another remesh.
   void set_fresh_mesh() { ale_->set_fresh(true); }

@@ -21,6 +21,9 @@ struct TimeParams {
   bool steady = false;
   double dt = 1, t_end = 1, rho_inf = 0.5;
   long max_steps = 1;
+  // With error-controlled steps (-ts_adapt_type error) the step count is not known from dt:
+  // -ts_max_steps given with -ts_max_time then stops the run after that step (0: no cap).
+  long step_cap = 0;
   static TimeParams from_options();
 };
 
@@ -58,6 +61,9 @@ public:
                                     std::vector<std::pair<PetscInt, double>> &out) const;
   // After a converged step: A_{n+1}, D_{n+1} by Newmark, V_{n+1} = U, t += dt.
   void advance(Vec U);
+  // Local error estimate of the step to U (before advance): max over the dofs in `is` of
+  // |U - (V_n + dt A_n)| / (atol + rtol max|U|), the corrector against an explicit predictor.
+  double error_estimate(Vec U, IS is, double atol, double rtol) const;
 
 private:
   const Space &space_;

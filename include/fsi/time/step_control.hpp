@@ -1,25 +1,48 @@
-// Step-size control on failure (-ts_adapt_type cut|none, default cut): a step whose Newton diverges
-// or whose solid element would invert is retried from the last converged state with dt <-
-// -ts_adapt_scale_solve_failed dt (default 0.5); after -step_grow_after consecutive easy steps
-// (Newton iterations <= -step_easy_newton) dt grows back by 1 / cut_factor, never above the scene's
-// dt. Below -ts_adapt_dt_min (default dt / 1000) the run stops: checkpoint, reason, non-zero exit.
+// Step-size control (-ts_adapt_type cut|error|none, default cut).
+//   cut:   a step whose Newton diverges or whose solid element would invert is retried from the
+//          last converged state with dt <- -ts_adapt_scale_solve_failed dt (default 0.5); after
+//          -step_grow_after consecutive easy steps (Newton <= -step_easy_newton) dt grows back by
+//          1 / cut_factor, never above the scene's dt.
+//   error: the same retry on failure, and dt chosen by a local error estimate: the velocity
+//          unknowns' distance between the corrector v_{n+1} and the explicit predictor
+//          v_n + dt a_n, in the max norm over atol + rtol max|v| (-ts_atol, -ts_rtol); a step
+//          above 1 is rejected and retried smaller, an accepted one sets the next dt with a PI
+//          controller, between -ts_adapt_dt_min and -ts_adapt_dt_max.
+// Below -ts_adapt_dt_min (default dt / 1000) the run stops: checkpoint, reason, non-zero exit.
 // Steps that end on a distorted fluid mesh are not retried (a smaller step does not help there).
 #pragma once
 #include "fsi/common.hpp"
 
 namespace fsi {
 
+// Tolerances of the error estimate, handed to the step that computes it.
+struct StepErrorTolerance {
+  double atol = 0, rtol = 0;
+};
+
 struct StepControl {
-  bool enabled = true;
-  double nominal = 1, dt = 1, factor = 0.5, dt_min = 1e-3;
+  enum Mode { none, cut_only, error } mode = cut_only;
+  bool enabled = true; // failed steps are retried (cut or error)
+  double nominal = 1, dt = 1, factor = 0.5, dt_min = 1e-3, dt_max = 1;
   long grow_after = 3, easy_newton = 4;
   long easy_run = 0, cuts = 0, grows = 0;
+  // Error control: tolerances, safety factor, the last accepted step's scaled error (PI memory),
+  // rejected steps, and the range of accepted steps.
+  StepErrorTolerance tol;
+  double safety = 0.9, error_prev = 0, dt_smallest = 0, dt_largest = 0;
+  long rejections = 0;
   static StepControl from_options(double nominal_dt);
-  void resume(double dt_, long easy_run_) { dt = dt_, easy_run = easy_run_; }
+  void resume(double dt_, long easy_run_, double error_prev_) {
+    dt = dt_, easy_run = easy_run_, error_prev = error_prev_;
+  }
+  const StepErrorTolerance *error_tolerance() const { return mode == error ? &tol : nullptr; }
   // After a failed step: the next dt, or false when it would fall below dt_min (or adapt off).
   bool cut();
-  // After an accepted step with `newton` iterations: may grow dt back toward the nominal one.
-  void accepted(long newton);
+  // After a step rejected by its error estimate e > 1: the smaller dt, or false below dt_min.
+  bool reject(double e);
+  // After an accepted step with `newton` iterations and scaled error e (error mode; negative:
+  // no estimate, the run's first step): the next dt.
+  void accepted(long newton, double e = -1);
 };
 
 } // namespace fsi
