@@ -4,10 +4,44 @@
 
 namespace fsi {
 
+std::vector<size_t> locality_order(const std::vector<PetscInt> &dofs, int n) {
+  const size_t ne = dofs.size() / n;
+  std::vector<PetscInt> key(ne);
+  for (size_t e = 0; e < ne; ++e)
+    key[e] = *std::min_element(&dofs[e * n], &dofs[e * n] + n);
+  std::vector<size_t> order(ne);
+  for (size_t e = 0; e < ne; ++e)
+    order[e] = e;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key[a] < key[b]; });
+  return order;
+}
+
 void ElementAssembler::setup(Mat J, const Space &space, const std::vector<PetscInt> &dofs, int n,
-                             const std::vector<char> &is_dirichlet) {
+                             const std::vector<char> &is_dirichlet,
+                             const std::vector<int> &groups) {
   space_ = &space;
   dofs_ = &dofs;
+  n_ = n;
+  gstart_.clear();
+  gsize_.clear();
+  for (int g : groups) {
+    gstart_.push_back(gstart_.empty() ? 0 : gstart_.back() + gsize_.back());
+    gsize_.push_back(g);
+  }
+  if (gsize_.empty() || gstart_.back() + gsize_.back() != n)
+    throw PetscFailure("internal: element dof groups do not add up to the element's dofs");
+  if (find_positions(J, is_dirichlet)) return;
+  gstart_.resize(n); // one dof per group: a position per entry
+  gsize_.assign(n, 1);
+  for (int t = 0; t < n; ++t)
+    gstart_[t] = t;
+  find_positions(J, is_dirichlet);
+}
+
+bool ElementAssembler::find_positions(Mat J, const std::vector<char> &is_dirichlet) {
+  const Space &space = *space_;
+  const std::vector<PetscInt> &dofs = *dofs_;
+  const int n = n_, G = (int)gsize_.size();
   PetscBool mpi;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)J, MATMPIAIJ, &mpi));
   const PetscInt *garray = nullptr;
@@ -35,36 +69,52 @@ void ElementAssembler::setup(Mat J, const Space &space, const std::vector<PetscI
   }
   const PetscInt r0 = space.rstart, r1 = space.rstart + space.n_owned;
   const size_t ne = dofs.size() / n;
-  pos_.assign(ne * n * n, SKIP);
+  pos_.assign(ne * G * G, 0);
+  row_.assign(ne * n, SKIP);
+  std::vector<PetscInt> k(n); // one row's positions
   for (size_t e = 0; e < ne; ++e) {
     const PetscInt *d = &dofs[e * n];
-    for (int i = 0; i < n; ++i) {
-      uint16_t *p = &pos_[(e * n + i) * n];
-      if (is_dirichlet[d[i]]) continue; // SKIP
-      const PetscInt g = space.local_to_global[d[i]];
-      if (g < r0 || g >= r1) {
-        p[0] = REMOTE;
-        continue;
-      }
-      const PetscInt lr = g - r0, lenA = iaA_[lr + 1] - iaA_[lr];
-      for (int j = 0; j < n; ++j) {
-        const PetscInt gc = space.local_to_global[d[j]];
-        PetscInt k;
-        if (gc >= r0 && gc < r1) {
-          auto it = std::lower_bound(jaA.begin() + iaA_[lr], jaA.begin() + iaA_[lr + 1], gc - r0);
-          k = it - (jaA.begin() + iaA_[lr]);
-        } else {
-          const PetscInt *gi = std::lower_bound(garray, garray + nB, gc);
-          const PetscInt cb = gi - garray;
-          auto it = std::lower_bound(jaB.begin() + iaB_[lr], jaB.begin() + iaB_[lr + 1], cb);
-          k = lenA + (it - (jaB.begin() + iaB_[lr]));
+    for (int ga = 0; ga < G; ++ga) {
+      bool first = true;
+      for (int i = 0; i < gsize_[ga]; ++i) {
+        const int r = gstart_[ga] + i;
+        if (is_dirichlet[d[r]]) continue; // SKIP
+        const PetscInt g = space.local_to_global[d[r]];
+        if (g < r0 || g >= r1) {
+          row_[e * n + r] = REMOTE;
+          continue;
         }
-        if (k >= REMOTE) throw PetscFailure("internal: matrix row too long for 16-bit positions");
-        p[j] = (uint16_t)k;
+        row_[e * n + r] = LOCAL;
+        const PetscInt lr = g - r0, lenA = iaA_[lr + 1] - iaA_[lr];
+        for (int j = 0; j < n; ++j) {
+          const PetscInt gc = space.local_to_global[d[j]];
+          if (gc >= r0 && gc < r1) {
+            auto it = std::lower_bound(jaA.begin() + iaA_[lr], jaA.begin() + iaA_[lr + 1], gc - r0);
+            k[j] = it - (jaA.begin() + iaA_[lr]);
+          } else {
+            const PetscInt *gi = std::lower_bound(garray, garray + nB, gc);
+            const PetscInt cb = gi - garray;
+            auto it = std::lower_bound(jaB.begin() + iaB_[lr], jaB.begin() + iaB_[lr + 1], cb);
+            k[j] = lenA + (it - (jaB.begin() + iaB_[lr]));
+          }
+          if (k[j] >= 0xFFFF)
+            throw PetscFailure("internal: matrix row too long for 16-bit positions");
+        }
+        uint16_t *p = &pos_[(e * G + ga) * G];
+        for (int gb = 0; gb < G; ++gb) {
+          const int ob = gstart_[gb], sb = gsize_[gb];
+          for (int j = 1; j < sb; ++j) // consecutive, in one of the two blocks
+            if (k[ob + j] != k[ob] + j || (k[ob] < lenA) != (k[ob + j] < lenA)) return false;
+          if (first)
+            p[gb] = (uint16_t)k[ob];
+          else if (p[gb] != k[ob])
+            return false; // the group's rows differ
+        }
+        first = false;
       }
     }
   }
-  n_ = n;
+  return true;
 }
 
 void ElementAssembler::begin(Mat J) {
@@ -78,29 +128,33 @@ void ElementAssembler::end(Mat J) {
 }
 
 void ElementAssembler::add(Mat J, size_t e, const double *K) {
-  const int n = n_;
+  const int n = n_, G = (int)gsize_.size();
   const PetscInt *d = &(*dofs_)[e * n];
+  const uint8_t *flag = &row_[e * n];
   const PetscInt r0 = space_->rstart;
-  for (int i = 0; i < n; ++i) {
-    const uint16_t *p = &pos_[(e * n + i) * n];
-    if (p[0] == SKIP) continue;
-    const double *Ki = K + i * n;
-    if (p[0] == REMOTE) { // row owned by another rank: through the stash
-      PetscInt gr = space_->local_to_global[d[i]], gc[64];
-      for (int j = 0; j < n; ++j)
-        gc[j] = space_->local_to_global[d[j]];
-      FSI_CALL(MatSetValues(J, 1, &gr, n, gc, Ki, ADD_VALUES));
-      continue;
-    }
-    const PetscInt lr = space_->local_to_global[d[i]] - r0;
-    PetscScalar *a = va_ + iaA_[lr];
-    PetscScalar *b = vb_ ? vb_ + iaB_[lr] - (iaA_[lr + 1] - iaA_[lr]) : nullptr;
-    const uint16_t lenA = (uint16_t)(iaA_[lr + 1] - iaA_[lr]);
-    for (int j = 0; j < n; ++j) {
-      if (p[j] < lenA)
-        a[p[j]] += Ki[j];
-      else
-        b[p[j]] += Ki[j];
+  for (int ga = 0; ga < G; ++ga) {
+    const uint16_t *p = &pos_[(e * G + ga) * G];
+    for (int i = 0; i < gsize_[ga]; ++i) {
+      const int r = gstart_[ga] + i;
+      if (flag[r] == SKIP) continue;
+      const double *Kr = K + r * n;
+      if (flag[r] == REMOTE) { // row owned by another rank: through the stash
+        PetscInt gr = space_->local_to_global[d[r]], gc[64];
+        for (int j = 0; j < n; ++j)
+          gc[j] = space_->local_to_global[d[j]];
+        FSI_CALL(MatSetValues(J, 1, &gr, n, gc, Kr, ADD_VALUES));
+        continue;
+      }
+      const PetscInt lr = space_->local_to_global[d[r]] - r0;
+      const PetscInt lenA = iaA_[lr + 1] - iaA_[lr];
+      PetscScalar *a = va_ + iaA_[lr];
+      PetscScalar *b = vb_ ? vb_ + iaB_[lr] - lenA : nullptr;
+      for (int gb = 0; gb < G; ++gb) {
+        PetscScalar *t = (p[gb] < lenA ? a : b) + p[gb];
+        const double *k = Kr + gstart_[gb];
+        for (int j = 0; j < gsize_[gb]; ++j)
+          t[j] += k[j];
+      }
     }
   }
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <numeric>
 
 namespace fsi {
 
@@ -48,11 +49,44 @@ FluidModule::FluidModule(const Space &space, const Mesh &mesh, const FluidParams
     for (int b = 0; b < 4; ++b)
       dofs_[34 * c + 30 + b] = space.cell_pdof[4 * k + b];
   }
+  jacobian_order_ = locality_order(dofs_, 34);
   for (auto &l : rule_.lambda) {
     std::array<double, 10> n;
     double gl[4][3] = {}, dn[10][3];
     p2_tet(l.data(), gl, n.data(), dn);
     N_.push_back(n);
+  }
+  rule2_ = tet_rule(2);
+  // D[a][k] = dN_a/dlambda_k at a point, the P2 basis of p2tet.hpp as a function of all four
+  // barycentric coordinates (grad N_a = sum_k D[a][k] grad lambda_k).
+  auto dlambda = [](const double *l, double D[10][4]) {
+    for (int a = 0; a < 10; ++a)
+      for (int k = 0; k < 4; ++k)
+        D[a][k] = 0;
+    for (int i = 0; i < 4; ++i)
+      D[i][i] = 4 * l[i] - 1;
+    for (int e = 0; e < 6; ++e) {
+      D[4 + e][TET_EDGE[e][0]] = 4 * l[TET_EDGE[e][1]];
+      D[4 + e][TET_EDGE[e][1]] = 4 * l[TET_EDGE[e][0]];
+    }
+  };
+  std::memset(Mref_, 0, sizeof Mref_);
+  std::memset(Tref_, 0, sizeof Tref_);
+  std::memset(Pref_, 0, sizeof Pref_);
+  for (size_t q = 0; q < rule_.weight.size(); ++q) {
+    const double w = rule_.weight[q], *l = rule_.lambda[q].data(), *N = N_[q].data();
+    double D[10][4];
+    dlambda(l, D);
+    for (int a = 0; a < 10; ++a)
+      for (int b = 0; b < 10; ++b) {
+        Mref_[a][b] += w * N[a] * N[b];
+        for (int k = 0; k < 4; ++k)
+          Tref_[k][a][b] += w * l[k] * N[a] * N[b];
+      }
+    for (int k = 0; k < 4; ++k)
+      for (int a = 0; a < 10; ++a)
+        for (int b = 0; b < 4; ++b)
+          Pref_[k][a][b] += w * l[b] * D[a][k];
   }
 }
 
@@ -139,6 +173,13 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
   }
 }
 
+// The element Jacobian from per-element sums instead of per-point 34 x 34 updates (6x fewer
+// flops, same matrix to rounding): on a straight-sided tet every P2 gradient is linear, so
+//   the viscous blocks (int dN_a,j dN_b,i) are exact with a 4-point rule,
+//   the mass is |det| Mref, the pressure coupling |det| sum_k g_k,i Pref[k],
+//   the convective block rho N_a N_b grad v (grad v is linear: its vertex values G_k times
+//   Tref[k], the residual's rule) needs no quadrature loop, and only the scalar convection
+//   N_a (c . grad N_b) is summed over the residual's rule.
 void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
   const double rho = p_.rho, mu = p_.mu;
   const bool conv = !p_.stokes;
@@ -148,56 +189,97 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
   Element e;
   PetscInt rows[n], cols[n];
   double K[n][n];
+  double S[10][10];       // the same for every component: mass, Laplacian, convection
+  double E[3][3][10][10]; // component blocks (i, j): viscous transpose term, rho N N grad v
   const bool fast = p_.direct_insertion;
-  if (fast && !assembler_.ready()) assembler_.setup(J, space_, dofs_, n, bc);
+  static const std::vector<int> groups = {3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 1, 1, 1, 1}; // nodes
+  if (fast && !assembler_.ready()) assembler_.setup(J, space_, dofs_, n, bc, groups);
   if (fast) assembler_.begin(J);
-  for (size_t c = 0; c < cells_.size(); ++c) {
+  for (size_t c : jacobian_order_) {
     const PetscInt k = cells_[c];
     gather(ctx, k, e);
-    std::memset(K, 0, sizeof K);
-    for (size_t q = 0; q < rule_.weight.size(); ++q) {
-      const double *l = rule_.lambda[q].data();
-      const double *N = N_[q].data();
-      double dN[10][3], dN1[10][3], Nd[10];
-      p2_tet(l, e.geo.grad_lambda, Nd, dN);
-      if (e.moving) p2_tet(l, e.geo1.grad_lambda, Nd, dN1);
-      const double(&dNc)[10][3] = e.moving ? dN1 : dN; // continuity: mesh of t_{n+1}
-      const double s = rule_.weight[q] * e.geo.absdet, s1 = rule_.weight[q] * e.geo1.absdet;
-      double c[3] = {}, G[3][3] = {};
-      if (conv) {
+    const double det = e.geo.absdet, det1 = e.geo1.absdet;
+    const double(&g)[4][3] = e.geo.grad_lambda;
+    const double(&g1)[4][3] = e.geo1.grad_lambda;
+    // Viscous: E_ij[a][b] = mu cf |det| sum_q w dN_a,j dN_b,i; its trace is the Laplacian.
+    std::memset(E, 0, sizeof E);
+    for (size_t q = 0; q < rule2_.weight.size(); ++q) {
+      double dN[10][3], Nd[10];
+      p2_tet(rule2_.lambda[q].data(), g, Nd, dN);
+      const double s = rule2_.weight[q] * det * mu * cf;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int a = 0; a < 10; ++a) {
+            const double t = s * dN[a][j];
+            for (int b = 0; b < 10; ++b)
+              E[i][j][a][b] += t * dN[b][i];
+          }
+    }
+    const double sm = rho * cm * det;
+    for (int a = 0; a < 10; ++a)
+      for (int b = 0; b < 10; ++b)
+        S[a][b] = sm * Mref_[a][b] + E[0][0][a][b] + E[1][1][a][b] + E[2][2][a][b];
+    if (conv) {
+      // rho N_a N_b G_ij with G = grad v, linear: G(q) = sum_k lambda_k(q) G_k.
+      for (int kv = 0; kv < 4; ++kv) {
+        double lv[4] = {0, 0, 0, 0}, dN[10][3], Nd[10], G[3][3] = {};
+        lv[kv] = 1;
+        p2_tet(lv, g, Nd, dN);
         for (int b = 0; b < 10; ++b)
-          for (int i = 0; i < 3; ++i) {
-            c[i] += N[b] * e.v[b][i];
+          for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j)
               G[i][j] += e.v[b][i] * dN[b][j];
+        const double sr = rho * cf * det;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            const double t = sr * G[i][j];
+            for (int a = 0; a < 10; ++a)
+              for (int b = 0; b < 10; ++b)
+                E[i][j][a][b] += t * Tref_[kv][a][b];
           }
+      }
+      // rho N_a (c . grad N_b), c = v - w, on the residual's rule.
+      for (size_t q = 0; q < rule_.weight.size(); ++q) {
+        const double *l = rule_.lambda[q].data(), *N = N_[q].data();
+        double dN[10][3], Nd[10], cv[3] = {};
+        p2_tet(l, g, Nd, dN);
+        for (int b = 0; b < 10; ++b)
+          for (int i = 0; i < 3; ++i)
+            cv[i] += N[b] * e.v[b][i];
         for (int b = 0; b < 4; ++b)
           for (int i = 0; i < 3; ++i)
-            c[i] -= l[b] * e.w[b][i];
-      }
-      const double sm = s * rho * cm, sf = s * cf, smu = sf * mu, srho = sf * rho;
-      for (int a = 0; a < 10; ++a) {
-        for (int b = 0; b < 10; ++b) {
-          const double NN = N[a] * N[b];
-          double diag =
-              sm * NN + smu * (dN[a][0] * dN[b][0] + dN[a][1] * dN[b][1] + dN[a][2] * dN[b][2]);
-          if (conv) diag += srho * N[a] * (c[0] * dN[b][0] + c[1] * dN[b][1] + c[2] * dN[b][2]);
-          for (int i = 0; i < 3; ++i) {
-            double *row = K[3 * a + i] + 3 * b;
-            row[i] += diag;
-            for (int j = 0; j < 3; ++j) {
-              row[j] += smu * dN[a][j] * dN[b][i];
-              if (conv) row[j] += srho * NN * G[i][j];
-            }
-          }
+            cv[i] -= l[b] * e.w[b][i];
+        const double s = rule_.weight[q] * det * rho * cf;
+        double cg[10];
+        for (int b = 0; b < 10; ++b)
+          cg[b] = cv[0] * dN[b][0] + cv[1] * dN[b][1] + cv[2] * dN[b][2];
+        for (int a = 0; a < 10; ++a) {
+          const double t = s * N[a];
+          for (int b = 0; b < 10; ++b)
+            S[a][b] += t * cg[b];
         }
-        for (int b = 0; b < 4; ++b)
-          for (int i = 0; i < 3; ++i) {
-            K[3 * a + i][30 + b] -= s * l[b] * dN[a][i];
-            K[30 + b][3 * a + i] -= s1 * l[b] * dNc[a][i];
-          }
       }
     }
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i) {
+        double *row = K[3 * a + i];
+        for (int b = 0; b < 10; ++b)
+          for (int j = 0; j < 3; ++j)
+            row[3 * b + j] = E[i][j][a][b] + (i == j ? S[a][b] : 0.0);
+        // -int lambda_b dN_a,i: momentum on the mesh of n+af, continuity on that of n+1.
+        for (int b = 0; b < 4; ++b) {
+          double pm = 0, pc = 0;
+          for (int kv = 0; kv < 4; ++kv) {
+            pm += g[kv][i] * Pref_[kv][a][b];
+            pc += g1[kv][i] * Pref_[kv][a][b];
+          }
+          row[30 + b] = -det * pm;
+          K[30 + b][3 * a + i] = -det1 * pc;
+        }
+      }
+    for (int b = 0; b < 4; ++b)
+      for (int c2 = 0; c2 < 4; ++c2)
+        K[30 + b][30 + c2] = 0;
     if (fast) {
       assembler_.add(J, c, &K[0][0]);
       continue;

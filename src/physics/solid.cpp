@@ -2,6 +2,7 @@
 #include "fsi/scene/options.hpp"
 
 #include <cstring>
+#include <numeric>
 
 namespace fsi {
 
@@ -47,12 +48,18 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh,
     for (int a = 0; a < 10; ++a)
       for (int i = 0; i < 3; ++i)
         dofs_[30 * c + 3 * a + i] = space.cell_vdof[10 * cells_[c] + a] + i;
+  jacobian_order_ = locality_order(dofs_, 30);
   for (auto &l : rule_.lambda) {
     std::array<double, 10> n;
     double gl[4][3] = {}, dn[10][3];
     p2_tet(l.data(), gl, n.data(), dn);
     N_.push_back(n);
   }
+  std::memset(Mref_, 0, sizeof Mref_);
+  for (size_t q = 0; q < rule_.weight.size(); ++q)
+    for (int a = 0; a < 10; ++a)
+      for (int b = 0; b < 10; ++b)
+        Mref_[a][b] += rule_.weight[q] * N_[q][a] * N_[q][b];
 }
 
 void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
@@ -112,15 +119,20 @@ void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
   }
 }
 
+// Per quadrature point the material stiffness K_ab,ik += w dN_a,J A_iJkL dN_b,L is formed in
+// two contractions over arrays with the node index innermost (Y over a, then K over b), which
+// the compiler vectorises; the mass is the reference mass matrix times rho cm |det|.
 void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
   const double cm = ctx.mass_shift() * p_.rho, cu = ctx.disp_shift();
   const std::vector<char> &bc = *ctx.is_dirichlet;
   constexpr int n = 30;
   const bool fast = p_.direct_insertion;
-  if (fast && !assembler_.ready()) assembler_.setup(Jmat, space_, dofs_, n, bc);
+  static const std::vector<int> groups(10, 3); // the 10 nodes' components
+  if (fast && !assembler_.ready()) assembler_.setup(Jmat, space_, dofs_, n, bc, groups);
   if (fast) assembler_.begin(Jmat);
   double K[n][n];
-  for (size_t c = 0; c < cells_.size(); ++c) {
+  double Kb[3][3][10][10]; // (i, k, a, b)
+  for (size_t c : jacobian_order_) {
     const PetscInt k = cells_[c];
     TetGeometry geo;
     double X[4][3], u[10][3];
@@ -129,38 +141,43 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
     for (int a = 0; a < 10; ++a)
       for (int i = 0; i < 3; ++i)
         u[a][i] = ctx.u_af(vd[a] + i);
-    std::memset(K, 0, sizeof K);
+    std::memset(Kb, 0, sizeof Kb);
     for (size_t q = 0; q < rule_.weight.size(); ++q) {
       const double *l = rule_.lambda[q].data();
-      const double *N = N_[q].data();
-      double Nd[10], dN[10][3];
+      double Nd[10], dN[10][3], dNT[3][10];
       p2_tet(l, geo.grad_lambda, Nd, dN);
       double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P[3][3], A[3][3][3][3];
       for (int b = 0; b < 10; ++b)
-        for (int i = 0; i < 3; ++i)
-          for (int J = 0; J < 3; ++J)
+        for (int J = 0; J < 3; ++J) {
+          dNT[J][b] = dN[b][J];
+          for (int i = 0; i < 3; ++i)
             F[i][J] += u[b][i] * dN[b][J];
+        }
       material_->tangent(F, P, A);
-      const double w = rule_.weight[q] * geo.absdet, wm = w * cm, wk = w * cu;
-      for (int b = 0; b < 10; ++b) {
-        // C[i][J][k] = sum_L A_iJkL dN_b,L
-        double C[3][3][3];
-        for (int i = 0; i < 3; ++i)
-          for (int J = 0; J < 3; ++J)
-            for (int kk = 0; kk < 3; ++kk)
-              C[i][J][kk] = wk * (A[i][J][kk][0] * dN[b][0] + A[i][J][kk][1] * dN[b][1] +
-                                  A[i][J][kk][2] * dN[b][2]);
-        for (int a = 0; a < 10; ++a) {
-          const double m = wm * N[a] * N[b];
-          for (int i = 0; i < 3; ++i) {
-            double *row = K[3 * a + i] + 3 * b;
-            row[i] += m;
-            for (int kk = 0; kk < 3; ++kk)
-              row[kk] += dN[a][0] * C[i][0][kk] + dN[a][1] * C[i][1][kk] + dN[a][2] * C[i][2][kk];
+      const double wk = rule_.weight[q] * geo.absdet * cu;
+      for (int i = 0; i < 3; ++i)
+        for (int kk = 0; kk < 3; ++kk) {
+          double Y[3][10]; // Y[L][a] = wk sum_J dN_a,J A_iJkL
+          for (int L = 0; L < 3; ++L) {
+            const double c0 = wk * A[i][0][kk][L], c1 = wk * A[i][1][kk][L],
+                         c2 = wk * A[i][2][kk][L];
+            for (int a = 0; a < 10; ++a)
+              Y[L][a] = c0 * dNT[0][a] + c1 * dNT[1][a] + c2 * dNT[2][a];
+          }
+          for (int a = 0; a < 10; ++a) {
+            const double y0 = Y[0][a], y1 = Y[1][a], y2 = Y[2][a];
+            double *kr = Kb[i][kk][a];
+            for (int b = 0; b < 10; ++b)
+              kr[b] += y0 * dNT[0][b] + y1 * dNT[1][b] + y2 * dNT[2][b];
           }
         }
-      }
     }
+    const double sm = cm * geo.absdet;
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        for (int b = 0; b < 10; ++b)
+          for (int kk = 0; kk < 3; ++kk)
+            K[3 * a + i][3 * b + kk] = Kb[i][kk][a][b] + (i == kk ? sm * Mref_[a][b] : 0.0);
     if (fast) {
       assembler_.add(Jmat, c, &K[0][0]);
       continue;
