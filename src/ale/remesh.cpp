@@ -194,6 +194,7 @@ RemeshOptions RemeshOptions::from_options() {
   o.test_fault = (int)opt::integer("ale_remesh_test_fault", 0);
   o.gap_cells = opt::nonnegative("ale_remesh_gap_cells", 2.0);
   o.flip_skewness = opt::nonnegative("ale_remesh_flip_skewness", 0.8);
+  o.project = opt::flag("ale_remesh_project", true);
   if (o.flip_skewness >= 1)
     throw InputError("-ale_remesh_flip_skewness must be below 1 (0 turns the flips off)");
   return o;

@@ -125,6 +125,8 @@ const std::vector<Section> &sections() {
          "cells across a fluid gap thinner than its boundary triangles (0: no gap sizing)"},
         {"ale_remesh_flip_skewness", "0.8", "-",
          "edge/face flips on new fluid cells worse than this (0: off)"},
+        {"ale_remesh_project", "true", "-",
+         "project the remeshed velocity onto discretely divergence-free fields (false: measure)"},
         {"ale_remesh_verbose", "0", "-", "1: show gmsh's messages while remeshing"},
         {"ale_remesh_test_fault", "0", "-", "1: corrupt the boundary given to gmsh (tests)"},
         {"ale_ksp_*, ale_pc_*", "cg, gamg", "-", "the mesh-motion linear solver"}}},

@@ -79,6 +79,10 @@ void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mes
   names.hemo = "remesh" + std::to_string(k) + "_hemo";
   sim = std::make_unique<Simulation>(*mesh, scene, names, &next);
   sim->set_fresh_mesh();
+  const ProjectionReport pr = sim->project_velocity(options.project);
+  report.weak_divergence = pr.before;
+  report.weak_divergence_projected = options.project ? pr.after : -1;
+  report.projection_seconds = pr.seconds;
   state = std::move(next);
   report.seconds = MPI_Wtime() - t0;
 }
@@ -115,10 +119,12 @@ void check_unused_options() {
   PetscInt left = 0;
   char **names, **values;
   FSI_CALL(PetscOptionsLeftGet(nullptr, &left, &names, &values));
+  // The remesh projection's solver options are read at the first remesh, perhaps much later.
   std::string list;
+  PetscInt n_left = 0;
   for (PetscInt i = 0; i < left; ++i)
-    list += std::string(i ? ", -" : "-") + names[i];
-  const PetscInt n_left = left; // LeftRestore resets the count
+    if (std::string(names[i]).rfind("remesh_projection_", 0) != 0)
+      list += std::string(n_left++ ? ", -" : "-") + names[i];
   FSI_CALL(PetscOptionsLeftRestore(nullptr, &left, &names, &values));
   if (n_left > 0)
     throw InputError("option(s) nobody reads: " + list +

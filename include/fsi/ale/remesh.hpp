@@ -43,6 +43,7 @@ struct RemeshOptions {
   int test_fault = 0;   // -ale_remesh_test_fault 1: a boundary vertex thrown across the domain
   double gap_cells = 2; // -ale_remesh_gap_cells: cells across a gap thinner than its triangles
   double flip_skewness = 0.8; // -ale_remesh_flip_skewness: flip cells worse than this (0: off)
+  bool project = true;        // -ale_remesh_project: make the new velocity divergence-free
   static RemeshOptions from_options(); // read at start, so that a typo fails before step 1
 };
 
@@ -59,6 +60,9 @@ struct RemeshReport {
   long gap_vertices = 0;      // boundary vertices facing a gap thinner than their triangles
   double skewness_gmsh = 0;   // worst new fluid cell as gmsh made it, before the flips
   long flips = 0, splits = 0; // sliver removal: flips and vertex moves; edge splits
+  // Weak divergence of the transferred velocity, and after the projection (velocity_projection.hpp;
+  // -1: not projected), and the projection's seconds.
+  double weak_divergence = 0, weak_divergence_projected = -1, projection_seconds = 0;
 };
 
 // Mesh the fluid again from the boundary of `mesh` at the positions of `state` (the state at the

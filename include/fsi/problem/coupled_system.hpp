@@ -61,6 +61,7 @@ public:
   // is rebuilt when dt has moved by more than 1.5x from the one it was last rebuilt for.
   void step_size_changed(double dt);
   const CostCounters &cost() const { return cost_; }
+  Mat matrix() const { return J_; } // the Jacobian (its pattern serves other operators)
 
   // SNES callbacks; residual() returns false where a solid element inverted.
   bool residual(Vec U, Vec F);

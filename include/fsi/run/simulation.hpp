@@ -9,6 +9,7 @@
 // displacement is measured); a state carries both.
 #pragma once
 #include "fsi/ale/ale.hpp"
+#include "fsi/ale/velocity_projection.hpp"
 #include "fsi/analytic/analytic.hpp"
 #include "fsi/analytic/exact_solid.hpp"
 #include "fsi/boundary/boundaries.hpp"
@@ -69,6 +70,9 @@ public:
   void set_dt(double dt);
   // The mesh was just remeshed: its first step does not ask for another remesh.
   void set_fresh_mesh() { ale_->set_fresh(true); }
+  // After a remesh: project V_n onto discretely divergence-free velocities (project = false:
+  // only measure); the Dirichlet and solid velocities are kept.
+  ProjectionReport project_velocity(bool project);
   double dt() const { return time_->dt(); }
   const Scene &scene() const { return scene_; }
   double time() const { return time_->time(); }

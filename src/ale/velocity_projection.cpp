@@ -1,0 +1,280 @@
+#include "fsi/ale/velocity_projection.hpp"
+#include "fsi/discretization/p2tet.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <utility>
+
+namespace fsi {
+
+namespace {
+
+// Reference integrals on the unit tet: mass M[a][b] = int N_a N_b (P2), and
+// P[k][a][b] = int lambda_b dN_a/dlambda_k, so that int lambda_b dN_a/dx_i = |det| sum_k
+// g_k,i P[k][a][b] on a straight-sided tet with barycentric gradients g_k.
+struct Reference {
+  double M[10][10] = {}, P[4][10][4] = {};
+  Reference() {
+    const QuadRule rule = tet_rule(4);
+    for (size_t q = 0; q < rule.weight.size(); ++q) {
+      const double w = rule.weight[q], *l = rule.lambda[q].data();
+      double N[10], dN[10][3], D[10][4] = {};
+      const double gl[4][3] = {};
+      p2_tet(l, gl, N, dN);
+      for (int i = 0; i < 4; ++i)
+        D[i][i] = 4 * l[i] - 1;
+      for (int e = 0; e < 6; ++e) {
+        D[4 + e][TET_EDGE[e][0]] = 4 * l[TET_EDGE[e][1]];
+        D[4 + e][TET_EDGE[e][1]] = 4 * l[TET_EDGE[e][0]];
+      }
+      for (int a = 0; a < 10; ++a) {
+        for (int b = 0; b < 10; ++b)
+          M[a][b] += w * N[a] * N[b];
+        for (int k = 0; k < 4; ++k)
+          for (int b = 0; b < 4; ++b)
+            P[k][a][b] += w * l[b] * D[a][k];
+      }
+    }
+  }
+};
+
+struct Cell {
+  TetGeometry g;
+  PetscInt vdof[10], pdof[4];
+  double B[10][3][4]; // int lambda_b dN_a/dx_i
+};
+
+void cell(const Space &space, PetscInt k, const std::vector<double> &X, const Reference &ref,
+          Cell &c) {
+  double P[4][3];
+  for (int i = 0; i < 4; ++i) {
+    const int v = space.cell_vertex[4 * k + i];
+    for (int d = 0; d < 3; ++d)
+      P[i][d] = X[3 * v + d];
+    c.pdof[i] = space.cell_pdof[4 * k + i];
+  }
+  c.g.set(P);
+  for (int a = 0; a < 10; ++a) {
+    c.vdof[a] = space.cell_vdof[10 * k + a];
+    for (int i = 0; i < 3; ++i)
+      for (int b = 0; b < 4; ++b) {
+        double s = 0;
+        for (int kk = 0; kk < 4; ++kk)
+          s += c.g.grad_lambda[kk][i] * ref.P[kk][a][b];
+        c.B[a][i][b] = c.g.absdet * s;
+      }
+  }
+}
+
+// The weak divergence (see the header) of the velocity in the local vector v.
+double weak_divergence(const Space &space, const std::vector<PetscInt> &cells,
+                       const std::vector<double> &X, const Reference &ref, const PetscScalar *v,
+                       MPI_Comm comm) {
+  std::vector<double> r(space.n_local, 0.0), m(space.n_local, 0.0);
+  double grad2 = 0, volume = 0;
+  static const QuadRule rule = tet_rule(2);
+  for (PetscInt k : cells) {
+    Cell c;
+    cell(space, k, X, ref, c);
+    for (int b = 0; b < 4; ++b) {
+      m[c.pdof[b]] += c.g.absdet / 24; // int lambda_b
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i)
+          r[c.pdof[b]] += c.B[a][i][b] * PetscRealPart(v[c.vdof[a] + i]);
+    }
+    volume += c.g.absdet / 6;
+    for (size_t q = 0; q < rule.weight.size(); ++q) {
+      double N[10], dN[10][3];
+      p2_tet(rule.lambda[q].data(), c.g.grad_lambda, N, dN);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          double G = 0;
+          for (int a = 0; a < 10; ++a)
+            G += PetscRealPart(v[c.vdof[a] + i]) * dN[a][j];
+          grad2 += rule.weight[q] * c.g.absdet * G * G;
+        }
+    }
+  }
+  // Pressure dofs shared between ranks: sum their pieces on the owner through the global vector.
+  Vec rg, mg, rl, ml;
+  rl = space.create_local();
+  FSI_CALL(VecDuplicate(rl, &ml));
+  rg = space.create_global();
+  FSI_CALL(VecDuplicate(rg, &mg));
+  PetscScalar *a;
+  FSI_CALL(VecGetArray(rl, &a));
+  std::copy(r.begin(), r.end(), a);
+  FSI_CALL(VecRestoreArray(rl, &a));
+  FSI_CALL(VecGetArray(ml, &a));
+  std::copy(m.begin(), m.end(), a);
+  FSI_CALL(VecRestoreArray(ml, &a));
+  FSI_CALL(VecSet(rg, 0));
+  FSI_CALL(VecSet(mg, 0));
+  space.add_to_global(rl, rg);
+  space.add_to_global(ml, mg);
+  double s[4] = {0, 0, grad2, volume}, t[4];
+  FSI_CALL(VecDot(rg, rg, &s[0]));
+  FSI_CALL(VecDot(mg, mg, &s[1]));
+  for (Vec *w : {&rg, &mg, &rl, &ml})
+    VecDestroy(w);
+  MPI_Allreduce(&s[2], &t[2], 2, MPI_DOUBLE, MPI_SUM, comm);
+  t[0] = s[0], t[1] = s[1]; // VecDot is global already
+  if (t[1] <= 0 || t[2] <= 0) return 0;
+  return std::sqrt(t[0] / t[1]) / std::sqrt(t[2] / t[3]);
+}
+
+} // namespace
+
+double measure_weak_divergence(const Space &space, const std::vector<PetscInt> &cells,
+                               const std::vector<double> &X, Vec V) {
+  static const Reference ref;
+  Vec Vl = space.create_local();
+  space.to_local(V, Vl);
+  const PetscScalar *vl;
+  FSI_CALL(VecGetArrayRead(Vl, &vl));
+  const double d = weak_divergence(space, cells, X, ref, vl, PetscObjectComm((PetscObject)V));
+  FSI_CALL(VecRestoreArrayRead(Vl, &vl));
+  FSI_CALL(VecDestroy(&Vl));
+  return d;
+}
+
+ProjectionReport project_divergence_free(const Space &space, const std::vector<PetscInt> &cells,
+                                         const std::vector<double> &X,
+                                         const std::vector<char> &fixed_local, Mat pattern, Vec V) {
+  const double t0 = MPI_Wtime();
+  static const Reference ref;
+  MPI_Comm comm = PetscObjectComm((PetscObject)V);
+  ProjectionReport rep;
+  Vec Vl = space.create_local();
+  space.to_local(V, Vl);
+  const PetscScalar *vl;
+  FSI_CALL(VecGetArrayRead(Vl, &vl));
+  rep.before = weak_divergence(space, cells, X, ref, vl, comm);
+
+  // Which local dofs take part: velocity dofs of fluid cells (free unless fixed) and the
+  // pressure dofs of fluid vertices; every other row is an identity.
+  std::vector<char> in_fluid(space.n_local, 0), velocity(space.n_local, 0);
+  for (PetscInt k : cells) {
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        in_fluid[space.cell_vdof[10 * k + a] + i] = velocity[space.cell_vdof[10 * k + a] + i] = 1;
+    for (int b = 0; b < 4; ++b)
+      in_fluid[space.cell_pdof[4 * k + b]] = 1;
+  }
+  // The same marks on every rank that sees a dof (its owner may hold no fluid or solid cell).
+  in_fluid = space.mark_on_all_ranks(in_fluid);
+  velocity = space.mark_on_all_ranks(velocity);
+  const std::vector<char> keep_value = space.mark_on_all_ranks(fixed_local);
+  Mat A;
+  FSI_CALL(MatDuplicate(pattern, MAT_DO_NOT_COPY_VALUES, &A));
+  FSI_CALL(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  std::vector<PetscInt> dofs(34);
+  Vec b, x, bl;
+  FSI_CALL(VecDuplicate(V, &b));
+  FSI_CALL(VecDuplicate(V, &x));
+  bl = space.create_local();
+  PetscScalar *bla;
+  FSI_CALL(VecGetArray(bl, &bla));
+  constexpr double eps = 1e-9;
+  double K[34][34];
+  for (PetscInt k : cells) {
+    Cell c;
+    cell(space, k, X, ref, c);
+    std::memset(K, 0, sizeof K);
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i) {
+        const PetscInt d = c.vdof[a] + i;
+        if (keep_value[d]) continue; // its row is an identity (below)
+        double rhs = 0;
+        for (int bb = 0; bb < 10; ++bb) {
+          const double m = c.g.absdet * ref.M[a][bb];
+          K[3 * a + i][3 * bb + i] = m;
+          rhs += m * PetscRealPart(vl[c.vdof[bb] + i]);
+        }
+        bla[d] += rhs;
+        for (int p = 0; p < 4; ++p)
+          K[3 * a + i][30 + p] = c.B[a][i][p];
+      }
+    for (int p = 0; p < 4; ++p) {
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i)
+          K[30 + p][3 * a + i] = c.B[a][i][p];
+      for (int q = 0; q < 4; ++q) // -eps |det| int lambda_p lambda_q
+        K[30 + p][30 + q] = -eps * c.g.absdet * (p == q ? 1.0 / 60 : 1.0 / 120);
+    }
+    for (int a = 0; a < 10; ++a)
+      for (int i = 0; i < 3; ++i)
+        dofs[3 * a + i] = c.vdof[a] + i;
+    for (int p = 0; p < 4; ++p)
+      dofs[30 + p] = c.pdof[p];
+    FSI_CALL(MatSetValuesLocal(A, 34, dofs.data(), 34, dofs.data(), &K[0][0], ADD_VALUES));
+  }
+  FSI_CALL(VecRestoreArray(bl, &bla));
+  FSI_CALL(VecSet(b, 0));
+  space.add_to_global(bl, b);
+  FSI_CALL(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  // Identity rows: fixed velocity dofs keep their value, dofs outside the fluid their own
+  // (pressure included: the multiplier's solution there is discarded anyway).
+  std::vector<PetscInt> keep;
+  for (PetscInt i = 0; i < space.n_local; ++i)
+    if (space.owned(i) && (!in_fluid[i] || keep_value[i])) keep.push_back(space.local_to_global[i]);
+  FSI_CALL(VecCopy(V, x));
+  FSI_CALL(MatZeroRows(A, (PetscInt)keep.size(), keep.data(), 1.0, x, b));
+
+  KSP ksp;
+  FSI_CALL(KSPCreate(comm, &ksp));
+  FSI_CALL(KSPSetOptionsPrefix(ksp, "remesh_projection_"));
+  FSI_CALL(KSPSetOperators(ksp, A, A));
+  // Default: MUMPS LU (exact: the run is the same on any rank count, restarts reproduce).
+  // -remesh_projection_pc_type fieldsplit solves it iteratively, twice as fast on the valve
+  // (FGMRES on a Schur factorisation: the velocity mass by CG + Jacobi, the P1 Schur complement
+  // B diag(M)^-1 B^T by BoomerAMG; see docs/remeshing.md), to its tolerance.
+  FSI_CALL(KSPSetType(ksp, KSPPREONLY));
+  PC pc;
+  FSI_CALL(KSPGetPC(ksp, &pc));
+  FSI_CALL(PCSetType(pc, PCLU));
+  FSI_CALL(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  FSI_CALL(KSPSetFromOptions(ksp));
+  PetscBool fs;
+  FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
+  if (fs) { // the velocity mass, then the multiplier
+    FSI_CALL(PCFieldSplitSetIS(pc, "velocity", space.is_velocity));
+    FSI_CALL(PCFieldSplitSetIS(pc, "pressure", space.is_pressure));
+  }
+  FSI_CALL(KSPSolve(ksp, b, x));
+  KSPConvergedReason reason;
+  FSI_CALL(KSPGetConvergedReason(ksp, &reason));
+  FSI_CALL(KSPDestroy(&ksp));
+  FSI_CALL(MatDestroy(&A));
+  FSI_CALL(VecRestoreArrayRead(Vl, &vl));
+  if (reason < 0) {
+    for (Vec *w : {&b, &x, &bl, &Vl})
+      VecDestroy(w);
+    throw SolveError("the divergence-free projection of the remeshed velocity failed (" +
+                     std::string(KSPConvergedReasons[reason]) + ")");
+  }
+  // New velocities into V (owned, free fluid velocity dofs); pressure and the rest unchanged.
+  PetscScalar *va;
+  const PetscScalar *xa;
+  FSI_CALL(VecGetArray(V, &va));
+  FSI_CALL(VecGetArrayRead(x, &xa));
+  for (PetscInt i = 0; i < space.n_local; ++i) {
+    if (!space.owned(i) || !velocity[i] || keep_value[i]) continue;
+    const PetscInt g = space.local_to_global[i] - space.rstart;
+    va[g] = xa[g];
+  }
+  FSI_CALL(VecRestoreArrayRead(x, &xa));
+  FSI_CALL(VecRestoreArray(V, &va));
+  space.to_local(V, Vl);
+  FSI_CALL(VecGetArrayRead(Vl, &vl));
+  rep.after = weak_divergence(space, cells, X, ref, vl, comm);
+  FSI_CALL(VecRestoreArrayRead(Vl, &vl));
+  for (Vec *w : {&b, &x, &bl, &Vl})
+    VecDestroy(w);
+  rep.seconds = MPI_Wtime() - t0;
+  return rep;
+}
+
+} // namespace fsi
