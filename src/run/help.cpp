@@ -64,6 +64,7 @@ const std::vector<Section> &sections() {
         {"ts_atol", "1e-3", "m/s", "error: absolute tolerance on the velocity's local error"},
         {"ts_adapt_dt_max", "10 ts_dt", "s", "error: largest step"},
         {"ts_adapt_safety", "0.9", "-", "error: safety factor of the step-size controller"},
+        {"ts_adapt_max_rejections", "5", "-", "error: rejections of one step before it is taken"},
         {"ts_adapt_scale_solve_failed", "0.5", "-", "dt factor after a failed step, in (0, 1)"},
         {"ts_adapt_dt_min", "dt/1000", "s", "below this step size the run stops (exit 3)"},
         {"step_grow_after", "3", "steps", "easy steps before dt grows back by 1/factor"},

@@ -154,6 +154,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
       .set("dt_largest", control.dt_largest);
   if (control.mode == StepControl::error)
     sc.set("rejections", control.rejections)
+        .set("accepted_above_tolerance", control.accepted_above)
         .set("rtol", control.tol.rtol)
         .set("atol", control.tol.atol)
         .set("dt_max", control.dt_max);

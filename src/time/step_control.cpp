@@ -33,6 +33,8 @@ StepControl StepControl::from_options(double nominal_dt) {
     if (c.dt_max < nominal_dt)
       throw InputError("option -ts_adapt_dt_max is smaller than the time step -ts_dt");
     c.safety = opt::positive("ts_adapt_safety", 0.9);
+    c.max_rejections = opt::integer("ts_adapt_max_rejections", 5);
+    if (c.max_rejections < 0) throw InputError("option -ts_adapt_max_rejections must be >= 0");
     if (c.safety > 1) throw InputError("option -ts_adapt_safety must be in (0, 1], e.g. 0.9");
   }
   return c;
@@ -51,6 +53,7 @@ bool StepControl::reject(double e) {
   if (dt * f < dt_min * (1 - 1e-12)) return false;
   dt *= f;
   ++rejections;
+  ++step_rejections;
   return true;
 }
 
@@ -58,7 +61,9 @@ void StepControl::accepted(long newton, double e) {
   dt_smallest = dt_smallest > 0 ? std::min(dt_smallest, dt) : dt;
   dt_largest = std::max(dt_largest, dt);
   if (mode == error) {
-    if (e < 0) return; // no estimate (first step): keep dt
+    step_rejections = 0;
+    if (e > 1) ++accepted_above;
+    if (e < 0) return; // no estimate (first step, first on a new mesh): keep dt
     e = std::max(e, 1e-8);
     double f = safety * std::pow(e, -kI) * (error_prev > 0 ? std::pow(error_prev / e, kP) : 1.0);
     error_prev = e;

@@ -69,7 +69,11 @@ public:
   StepStats step(const StepErrorTolerance *tol = nullptr);
   void set_dt(double dt);
   // The mesh was just remeshed: its first step does not ask for another remesh.
-  void set_fresh_mesh() { ale_->set_fresh(true); }
+  // (Its first step has a transferred history: no error estimate.)
+  void set_fresh_mesh() {
+    ale_->set_fresh(true);
+    history_exact_ = false;
+  }
   // After a remesh: project V_n onto discretely divergence-free velocities (project = false:
   // only measure); the Dirichlet and solid velocities are kept.
   ProjectionReport project_velocity(bool project);
@@ -112,6 +116,7 @@ private:
   void restore(const RunState &s);
   void dirichlet_data(double t_np1);
   const Scene &scene_;
+  bool history_exact_ = true; // false on a new mesh until its first step is taken
   OutputNames out_;
   Space space_;
   std::vector<double> material_X_;

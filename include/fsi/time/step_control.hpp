@@ -7,7 +7,9 @@
 //          unknowns' distance between the corrector v_{n+1} and the explicit predictor
 //          v_n + dt a_n, in the max norm over atol + rtol max|v| (-ts_atol, -ts_rtol); a step
 //          above 1 is rejected and retried smaller, an accepted one sets the next dt with a PI
-//          controller, between -ts_adapt_dt_min and -ts_adapt_dt_max.
+//          controller, between -ts_adapt_dt_min and -ts_adapt_dt_max.  A step rejected
+//          -ts_adapt_max_rejections times (default 5) is taken as it is (counted): where the
+//          estimate is noise (it stops shrinking with dt) it would otherwise drive dt to dt_min.
 // Below -ts_adapt_dt_min (default dt / 1000) the run stops: checkpoint, reason, non-zero exit.
 // Steps that end on a distorted fluid mesh are not retried (a smaller step does not help there).
 #pragma once
@@ -18,6 +20,7 @@ namespace fsi {
 // Tolerances of the error estimate, handed to the step that computes it.
 struct StepErrorTolerance {
   double atol = 0, rtol = 0;
+  bool accept_any = false; // the step was rejected -ts_adapt_max_rejections times: take it
 };
 
 struct StepControl {
@@ -30,12 +33,15 @@ struct StepControl {
   // rejected steps, and the range of accepted steps.
   StepErrorTolerance tol;
   double safety = 0.9, error_prev = 0, dt_smallest = 0, dt_largest = 0;
-  long rejections = 0;
+  long rejections = 0, max_rejections = 5, step_rejections = 0, accepted_above = 0;
   static StepControl from_options(double nominal_dt);
   void resume(double dt_, long easy_run_, double error_prev_) {
     dt = dt_, easy_run = easy_run_, error_prev = error_prev_;
   }
-  const StepErrorTolerance *error_tolerance() const { return mode == error ? &tol : nullptr; }
+  const StepErrorTolerance *error_tolerance() {
+    tol.accept_any = step_rejections >= max_rejections;
+    return mode == error ? &tol : nullptr;
+  }
   // After a failed step: the next dt, or false when it would fall below dt_min (or adapt off).
   bool cut();
   // After a step rejected by its error estimate e > 1: the smaller dt, or false below dt_min.
