@@ -19,15 +19,10 @@ struct Reference {
     const QuadRule rule = tet_rule(4);
     for (size_t q = 0; q < rule.weight.size(); ++q) {
       const double w = rule.weight[q], *l = rule.lambda[q].data();
-      double N[10], dN[10][3], D[10][4] = {};
+      double N[10], dN[10][3], D[10][4];
       const double gl[4][3] = {};
       p2_tet(l, gl, N, dN);
-      for (int i = 0; i < 4; ++i)
-        D[i][i] = 4 * l[i] - 1;
-      for (int e = 0; e < 6; ++e) {
-        D[4 + e][TET_EDGE[e][0]] = 4 * l[TET_EDGE[e][1]];
-        D[4 + e][TET_EDGE[e][1]] = 4 * l[TET_EDGE[e][0]];
-      }
+      p2_tet_dlambda(l, D);
       for (int a = 0; a < 10; ++a) {
         for (int b = 0; b < 10; ++b)
           M[a][b] += w * N[a] * N[b];

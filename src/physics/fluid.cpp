@@ -57,26 +57,13 @@ FluidModule::FluidModule(const Space &space, const Mesh &mesh, const FluidParams
     N_.push_back(n);
   }
   rule2_ = tet_rule(2);
-  // D[a][k] = dN_a/dlambda_k at a point, the P2 basis of p2tet.hpp as a function of all four
-  // barycentric coordinates (grad N_a = sum_k D[a][k] grad lambda_k).
-  auto dlambda = [](const double *l, double D[10][4]) {
-    for (int a = 0; a < 10; ++a)
-      for (int k = 0; k < 4; ++k)
-        D[a][k] = 0;
-    for (int i = 0; i < 4; ++i)
-      D[i][i] = 4 * l[i] - 1;
-    for (int e = 0; e < 6; ++e) {
-      D[4 + e][TET_EDGE[e][0]] = 4 * l[TET_EDGE[e][1]];
-      D[4 + e][TET_EDGE[e][1]] = 4 * l[TET_EDGE[e][0]];
-    }
-  };
   std::memset(Mref_, 0, sizeof Mref_);
   std::memset(Tref_, 0, sizeof Tref_);
   std::memset(Pref_, 0, sizeof Pref_);
   for (size_t q = 0; q < rule_.weight.size(); ++q) {
     const double w = rule_.weight[q], *l = rule_.lambda[q].data(), *N = N_[q].data();
     double D[10][4];
-    dlambda(l, D);
+    p2_tet_dlambda(l, D);
     for (int a = 0; a < 10; ++a)
       for (int b = 0; b < 10; ++b) {
         Mref_[a][b] += w * N[a] * N[b];

@@ -49,6 +49,20 @@ inline void p2_tet(const double l[4], const double gl[4][3], double N[10], doubl
   }
 }
 
+// D[a][k] = dN_a/dlambda_k at a point: the P2 basis above as a function of all four barycentric
+// coordinates (grad N_a = sum_k D[a][k] grad lambda_k); linear in lambda.
+inline void p2_tet_dlambda(const double l[4], double D[10][4]) {
+  for (int a = 0; a < 10; ++a)
+    for (int k = 0; k < 4; ++k)
+      D[a][k] = 0;
+  for (int i = 0; i < 4; ++i)
+    D[i][i] = 4 * l[i] - 1;
+  for (int e = 0; e < 6; ++e) {
+    D[4 + e][TET_EDGE[e][0]] = 4 * l[TET_EDGE[e][1]];
+    D[4 + e][TET_EDGE[e][1]] = 4 * l[TET_EDGE[e][0]];
+  }
+}
+
 inline void p2_tri(const double l[3], double N[6]) {
   for (int i = 0; i < 3; ++i)
     N[i] = l[i] * (2 * l[i] - 1);
