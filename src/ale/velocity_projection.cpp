@@ -10,29 +10,11 @@ namespace fsi {
 
 namespace {
 
-// Reference integrals on the unit tet: mass M[a][b] = int N_a N_b (P2), and
-// P[k][a][b] = int lambda_b dN_a/dlambda_k, so that int lambda_b dN_a/dx_i = |det| sum_k
-// g_k,i P[k][a][b] on a straight-sided tet with barycentric gradients g_k.
-struct Reference {
-  double M[10][10] = {}, P[4][10][4] = {};
-  Reference() {
-    const QuadRule rule = tet_rule(4);
-    for (size_t q = 0; q < rule.weight.size(); ++q) {
-      const double w = rule.weight[q], *l = rule.lambda[q].data();
-      double N[10], dN[10][3], D[10][4];
-      const double gl[4][3] = {};
-      p2_tet(l, gl, N, dN);
-      p2_tet_dlambda(l, D);
-      for (int a = 0; a < 10; ++a) {
-        for (int b = 0; b < 10; ++b)
-          M[a][b] += w * N[a] * N[b];
-        for (int k = 0; k < 4; ++k)
-          for (int b = 0; b < 4; ++b)
-            P[k][a][b] += w * l[b] * D[a][k];
-      }
-    }
-  }
-};
+// P2 reference integrals (mass, pressure coupling), exact with a degree-4 rule.
+const P2Integrals &reference() {
+  static const P2Integrals ref(tet_rule(4));
+  return ref;
+}
 
 struct Cell {
   TetGeometry g;
@@ -40,7 +22,7 @@ struct Cell {
   double B[10][3][4]; // int lambda_b dN_a/dx_i
 };
 
-void cell(const Space &space, PetscInt k, const std::vector<double> &X, const Reference &ref,
+void cell(const Space &space, PetscInt k, const std::vector<double> &X, const P2Integrals &ref,
           Cell &c) {
   double P[4][3];
   for (int i = 0; i < 4; ++i) {
@@ -64,7 +46,7 @@ void cell(const Space &space, PetscInt k, const std::vector<double> &X, const Re
 
 // The weak divergence (see the header) of the velocity in the local vector v.
 double weak_divergence(const Space &space, const std::vector<PetscInt> &cells,
-                       const std::vector<double> &X, const Reference &ref, const PetscScalar *v,
+                       const std::vector<double> &X, const P2Integrals &ref, const PetscScalar *v,
                        MPI_Comm comm) {
   std::vector<double> r(space.n_local, 0.0), m(space.n_local, 0.0);
   double grad2 = 0, volume = 0;
@@ -123,7 +105,7 @@ double weak_divergence(const Space &space, const std::vector<PetscInt> &cells,
 
 double measure_weak_divergence(const Space &space, const std::vector<PetscInt> &cells,
                                const std::vector<double> &X, Vec V) {
-  static const Reference ref;
+  const P2Integrals &ref = reference();
   Vec Vl = space.create_local();
   space.to_local(V, Vl);
   const PetscScalar *vl;
@@ -138,7 +120,7 @@ ProjectionReport project_divergence_free(const Space &space, const std::vector<P
                                          const std::vector<double> &X,
                                          const std::vector<char> &fixed_local, Mat pattern, Vec V) {
   const double t0 = MPI_Wtime();
-  static const Reference ref;
+  const P2Integrals &ref = reference();
   MPI_Comm comm = PetscObjectComm((PetscObject)V);
   ProjectionReport rep;
   Vec Vl = space.create_local();

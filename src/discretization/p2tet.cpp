@@ -37,6 +37,26 @@ QuadRule tri_rule(int degree) {
   return simplex_rule(2, degree);
 }
 
+P2Integrals::P2Integrals(const QuadRule &rule) {
+  for (size_t q = 0; q < rule.weight.size(); ++q) {
+    const double w = rule.weight[q], *l = rule.lambda[q].data();
+    double N[10], dN[10][3], D[10][4];
+    const double gl[4][3] = {};
+    p2_tet(l, gl, N, dN);
+    p2_tet_dlambda(l, D);
+    for (int a = 0; a < 10; ++a) {
+      for (int b = 0; b < 10; ++b) {
+        M[a][b] += w * N[a] * N[b];
+        for (int k = 0; k < 4; ++k)
+          T[k][a][b] += w * l[k] * N[a] * N[b];
+      }
+      for (int k = 0; k < 4; ++k)
+        for (int b = 0; b < 4; ++b)
+          P[k][a][b] += w * l[b] * D[a][k];
+    }
+  }
+}
+
 void TetGeometry::set(const double X[4][3]) {
   double J[3][3]; // columns: X1-X0, X2-X0, X3-X0
   for (int d = 0; d < 3; ++d)

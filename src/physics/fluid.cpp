@@ -57,24 +57,7 @@ FluidModule::FluidModule(const Space &space, const Mesh &mesh, const FluidParams
     N_.push_back(n);
   }
   rule2_ = tet_rule(2);
-  std::memset(Mref_, 0, sizeof Mref_);
-  std::memset(Tref_, 0, sizeof Tref_);
-  std::memset(Pref_, 0, sizeof Pref_);
-  for (size_t q = 0; q < rule_.weight.size(); ++q) {
-    const double w = rule_.weight[q], *l = rule_.lambda[q].data(), *N = N_[q].data();
-    double D[10][4];
-    p2_tet_dlambda(l, D);
-    for (int a = 0; a < 10; ++a)
-      for (int b = 0; b < 10; ++b) {
-        Mref_[a][b] += w * N[a] * N[b];
-        for (int k = 0; k < 4; ++k)
-          Tref_[k][a][b] += w * l[k] * N[a] * N[b];
-      }
-    for (int k = 0; k < 4; ++k)
-      for (int a = 0; a < 10; ++a)
-        for (int b = 0; b < 4; ++b)
-          Pref_[k][a][b] += w * l[b] * D[a][k];
-  }
+  ref_ = P2Integrals(rule_);
 }
 
 void FluidModule::gather(const StepContext &ctx, PetscInt k, Element &e) const {
@@ -205,7 +188,7 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
     const double sm = rho * cm * det;
     for (int a = 0; a < 10; ++a)
       for (int b = 0; b < 10; ++b)
-        S[a][b] = sm * Mref_[a][b] + E[0][0][a][b] + E[1][1][a][b] + E[2][2][a][b];
+        S[a][b] = sm * ref_.M[a][b] + E[0][0][a][b] + E[1][1][a][b] + E[2][2][a][b];
     if (conv) {
       // rho N_a N_b G_ij with G = grad v, linear: G(q) = sum_k lambda_k(q) G_k.
       for (int kv = 0; kv < 4; ++kv) {
@@ -222,7 +205,7 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
             const double t = sr * G[i][j];
             for (int a = 0; a < 10; ++a)
               for (int b = 0; b < 10; ++b)
-                E[i][j][a][b] += t * Tref_[kv][a][b];
+                E[i][j][a][b] += t * ref_.T[kv][a][b];
           }
       }
       // rho N_a (c . grad N_b), c = v - w, on the residual's rule.
@@ -257,8 +240,8 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
         for (int b = 0; b < 4; ++b) {
           double pm = 0, pc = 0;
           for (int kv = 0; kv < 4; ++kv) {
-            pm += g[kv][i] * Pref_[kv][a][b];
-            pc += g1[kv][i] * Pref_[kv][a][b];
+            pm += g[kv][i] * ref_.P[kv][a][b];
+            pc += g1[kv][i] * ref_.P[kv][a][b];
           }
           row[30 + b] = -det * pm;
           K[30 + b][3 * a + i] = -det1 * pc;

@@ -43,6 +43,7 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh,
   for (auto &c : cells_)
     c -= space.cStart;
   rule_ = tet_rule(p.quad_degree);
+  ref_ = P2Integrals(rule_);
   dofs_.resize(30 * cells_.size());
   for (size_t c = 0; c < cells_.size(); ++c)
     for (int a = 0; a < 10; ++a)
@@ -55,11 +56,6 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh,
     p2_tet(l.data(), gl, n.data(), dn);
     N_.push_back(n);
   }
-  std::memset(Mref_, 0, sizeof Mref_);
-  for (size_t q = 0; q < rule_.weight.size(); ++q)
-    for (int a = 0; a < 10; ++a)
-      for (int b = 0; b < 10; ++b)
-        Mref_[a][b] += rule_.weight[q] * N_[q][a] * N_[q][b];
 }
 
 void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
@@ -177,7 +173,7 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
       for (int i = 0; i < 3; ++i)
         for (int b = 0; b < 10; ++b)
           for (int kk = 0; kk < 3; ++kk)
-            K[3 * a + i][3 * b + kk] = Kb[i][kk][a][b] + (i == kk ? sm * Mref_[a][b] : 0.0);
+            K[3 * a + i][3 * b + kk] = Kb[i][kk][a][b] + (i == kk ? sm * ref_.M[a][b] : 0.0);
     if (fast) {
       assembler_.add(Jmat, c, &K[0][0]);
       continue;

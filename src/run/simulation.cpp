@@ -261,18 +261,18 @@ void Simulation::initialize(const std::string &ic) {
 
 ProjectionReport Simulation::project_velocity(bool project) {
   if (!fluid_) return {};
-  std::vector<char> fixed = bcs_->dirichlet_mask();
-  if (solid_)
-    for (PetscInt k : solid_->cells())
-      for (int a = 0; a < 10; ++a)
-        for (int i = 0; i < 3; ++i)
-          fixed[space_.cell_vdof[10 * k + a] + i] = 1;
   if (!project) {
     ProjectionReport r;
     r.before =
         measure_weak_divergence(space_, fluid_->cells(), ale_->coordinates(), time_->velocity());
     return r;
   }
+  std::vector<char> fixed = bcs_->dirichlet_mask();
+  if (solid_)
+    for (PetscInt k : solid_->cells())
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i)
+          fixed[space_.cell_vdof[10 * k + a] + i] = 1;
   return project_divergence_free(space_, fluid_->cells(), ale_->coordinates(), fixed,
                                  system_->matrix(), time_->velocity());
 }

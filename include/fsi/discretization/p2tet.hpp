@@ -63,6 +63,17 @@ inline void p2_tet_dlambda(const double l[4], double D[10][4]) {
   }
 }
 
+// Reference-tet integrals of the P2 basis with a quadrature rule (exact where the rule's degree
+// reaches the integrand's): mass M[a][b] = sum w N_a N_b (degree 4), lambda-weighted mass
+// T[k][a][b] = sum w lambda_k N_a N_b (degree 5), and P[k][a][b] = sum w lambda_b dN_a/dlambda_k
+// (degree 2), so that int lambda_b dN_a/dx_i = |det| sum_k grad lambda_k,i P[k][a][b] on a
+// straight-sided tet.
+struct P2Integrals {
+  double M[10][10] = {}, T[4][10][10] = {}, P[4][10][4] = {};
+  P2Integrals() = default;
+  explicit P2Integrals(const QuadRule &rule);
+};
+
 inline void p2_tri(const double l[3], double N[6]) {
   for (int i = 0; i < 3; ++i)
     N[i] = l[i] * (2 * l[i] - 1);

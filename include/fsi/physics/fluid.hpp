@@ -57,10 +57,9 @@ private:
   std::vector<PetscInt> cells_; // local cell indices (0-based)
   QuadRule rule_;
   std::vector<std::array<double, 10>> N_; // P2 values per quadrature point
-  // Reference integrals for the Jacobian (see add_jacobian), with the residual's rule where the
-  // integrand is above degree 2 so that the two stay consistent: mass M[a][b] = sum w N_a N_b,
-  // T[k][a][b] = sum w lambda_k N_a N_b, P[k][a][b] = sum w lambda_b dN_a/dlambda_k.
-  double Mref_[10][10], Tref_[4][10][10], Pref_[4][10][4];
+  // Reference integrals for the Jacobian (see add_jacobian), on the residual's rule so that the
+  // two stay consistent where the integrand is above the rule's degree.
+  P2Integrals ref_;
   QuadRule rule2_;             // degree 2: exact for products of two P2 gradients
   std::vector<PetscInt> dofs_; // per cell: 34 local dofs in element order
   ElementAssembler assembler_;

@@ -67,7 +67,7 @@ private:
   std::vector<PetscInt> cells_;
   QuadRule rule_;
   std::vector<std::array<double, 10>> N_;
-  double Mref_[10][10];        // reference mass sum_q w N_a N_b (exact: degree 4)
+  P2Integrals ref_;            // reference mass (exact from degree 4)
   std::vector<PetscInt> dofs_; // 30 per cell
   ElementAssembler assembler_;
   std::vector<size_t> jacobian_order_; // cells by their first dof: matrix rows stay in cache
