@@ -67,7 +67,9 @@ int run(MPI_Comm comm) {
   std::vector<std::string> field_parts{names.fields}; // one per mesh the run was on
   StepControl control = StepControl::from_options(scene.time.dt);
   if (resume) {
-    control.resume(resume->dt, resume->easy_run, resume->error_prev);
+    // -restart_reset_dt: resume at the scene's step (a run stuck at cut steps), not the saved one
+    if (!opt::flag("restart_reset_dt", false))
+      control.resume(resume->dt, resume->easy_run, resume->error_prev);
     PetscPrintf(comm, "fsi_app: resumed from %s at step %ld, t = %.6e s, dt = %.3e s\n",
                 restart.c_str(), sim->step_index(), sim->time(), control.dt);
   }

@@ -15,6 +15,13 @@ ContactParams ContactParams::from_options() {
   p.penalty = opt::positive("contact_penalty", p.penalty);
   p.ramp = opt::positive("contact_ramp", 0.25 * p.offset);
   p.margin = opt::positive("contact_pattern_margin", p.offset);
+  p.walls = opt::list("contact_walls");
+  p.wall_offset = opt::positive("contact_wall_offset", p.offset);
+  p.wall_exclude = opt::positive("contact_wall_exclude", 2 * p.wall_offset);
+  if (p.ramp > p.wall_offset)
+    throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
+                     ") must not exceed -contact_wall_offset (" + std::to_string(p.wall_offset) +
+                     ")");
   if (p.ramp > p.offset)
     throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
                      ") must not exceed -contact_offset (" + std::to_string(p.offset) + ")");
@@ -31,14 +38,36 @@ double ContactParams::pressure_slope(double p) const {
   return p < ramp ? penalty * p / ramp : penalty;
 }
 
-ContactModule::ContactModule(std::shared_ptr<ContactSurface> surface, const ContactParams &p)
-    : surface_(std::move(surface)), p_(p) {}
+ContactModule::ContactModule(std::shared_ptr<ContactSurface> surface, const ContactParams &p,
+                             std::shared_ptr<ContactWall> wall)
+    : surface_(std::move(surface)), p_(p), wall_(std::move(wall)) {
+  if (!wall_) return;
+  // The surface as built is its reference configuration: nodes near the walls there (along
+  // the attachment) are held by the wall already and take no wall contact.
+  const ContactSurface &S = *surface_;
+  wall_node_.assign(S.n_nodes(), 0);
+  for (int n = 0; n < S.n_nodes(); ++n) {
+    int t;
+    TriRegion r;
+    wall_node_[n] = wall_->nearest(S.x(n), t, r) > p_.wall_exclude;
+  }
+}
 
 std::string ContactModule::name() const {
   char s[200];
   std::snprintf(s, sizeof s, "contact (penalty %g Pa/m, offset %g m, %d pieces)", p_.penalty,
                 p_.offset, surface_->n_components());
-  return s;
+  std::string name = s;
+  if (wall_) {
+    int n = 0;
+    for (char c : wall_node_)
+      n += c;
+    std::snprintf(s, sizeof s, "; rigid walls %s (%d triangles, offset %g m, %d of %d nodes)",
+                  opt::join(p_.walls).c_str(), wall_->n_triangles(), p_.wall_offset, n,
+                  surface_->n_nodes());
+    name += s;
+  }
+  return name;
 }
 
 std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius, bool all) {
@@ -77,6 +106,21 @@ template <class F> void ContactModule::for_each_active(F &&f) {
                                         d, g, H);
     const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
     f(nodes, p_.offset - d, 0.5 * S.area(pr.node), g, H);
+  }
+  if (!wall_) return;
+  wall_min_gap_ = wall_->radius();
+  for (int n = 0; n < S.n_nodes(); ++n) {
+    if (!wall_node_[n]) continue;
+    int t;
+    TriRegion region;
+    const double dn = wall_->nearest(S.x(n), t, region);
+    wall_min_gap_ = std::min(wall_min_gap_, dn);
+    if (t < 0 || dn >= p_.wall_offset || dn <= 1e-9 * p_.wall_offset) continue;
+    double d, g[12], H[12][12];
+    point_triangle_distance_derivatives(S.x(n), wall_->corner(t, 0), wall_->corner(t, 1),
+                                        wall_->corner(t, 2), region, d, g, H);
+    const int nodes[4] = {n, -1, -1, -1};
+    f(nodes, p_.wall_offset - d, S.area(n), g, H); // one way: the whole node area
   }
 }
 
@@ -118,16 +162,20 @@ void ContactModule::add_residual(const StepContext &, PetscScalar *F) {
   stats_ = ContactStats{0, 0, 0, stats_.pattern_misses};
   for_each_active([&](const int *nodes, double pen, double w, const double *g, auto &) {
     const double f = w * p_.pressure(pen);
-    stats_.active_pairs++;
+    if (nodes[1] < 0)
+      stats_.wall_pairs++;
+    else
+      stats_.active_pairs++;
     stats_.max_penetration = std::max(stats_.max_penetration, pen);
     stats_.force += f;
-    for (int a = 0; a < 4; ++a) {
+    for (int a = 0; a < 4 && nodes[a] >= 0; ++a) {
       const PetscInt l = S.owned_local_dof(nodes[a]);
       if (l < 0) continue;
       for (int i = 0; i < 3; ++i)
         F[l + i] -= f * g[3 * a + i]; // dE/dx = psi'(p) dp/dx = -psi'(p) dd/dx
     }
   });
+  stats_.wall_min_gap = wall_min_gap_;
 }
 
 void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {
@@ -142,13 +190,13 @@ void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {
     for (int i = 0; i < 12; ++i)
       for (int j = 0; j < 12; ++j)
         K[i][j] = cu * (fs * g[i] * g[j] - f * H[i][j]);
-    for (int a = 0; a < 4; ++a) {
+    for (int a = 0; a < 4 && nodes[a] >= 0; ++a) {
       const PetscInt l = S.owned_local_dof(nodes[a]);
       if (l < 0 || bc[l]) continue;
       PetscInt rows[3], cols[12];
       double vals[3][12];
       int nc = 0;
-      for (int b = 0; b < 4; ++b) {
+      for (int b = 0; b < 4 && nodes[b] >= 0; ++b) {
         const bool coupled = a == b || (a > 0 && b > 0) || pattern_.count(key(nodes[a], nodes[b]));
         if (!coupled) {
           stats_.pattern_misses++;

@@ -172,80 +172,11 @@ void ContactSurface::update(const StepContext &ctx) {
 }
 
 void ContactSurface::bin(double radius) {
-  const int nt = n_triangles();
-  double hi[3];
-  for (int d = 0; d < 3; ++d) {
-    lo_[d] = 1e300;
-    hi[d] = -1e300;
-  }
-  double edge = 0;
-  for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const double *p = x(tri_[t][k]), *q = x(tri_[t][(k + 1) % 3]);
-      edge += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                        (p[2] - q[2]) * (p[2] - q[2]));
-      for (int d = 0; d < 3; ++d) {
-        lo_[d] = std::min(lo_[d], p[d] - radius);
-        hi[d] = std::max(hi[d], p[d] + radius);
-      }
-    }
-  if (nt == 0) {
-    bin_start_.assign(2, 0);
-    nb_[0] = nb_[1] = nb_[2] = 1;
-    return;
-  }
-  h_ = std::max(2 * radius, edge / (3.0 * nt));
-  for (int d = 0; d < 3; ++d) {
-    while ((hi[d] - lo_[d]) / h_ > 128)
-      h_ *= 2;
-  }
-  for (int d = 0; d < 3; ++d)
-    nb_[d] = std::max(1, (int)std::ceil((hi[d] - lo_[d]) / h_));
-  const size_t nbins = (size_t)nb_[0] * nb_[1] * nb_[2];
-  std::vector<std::array<int, 6>> range(nt);
-  for (int t = 0; t < nt; ++t) {
-    for (int d = 0; d < 3; ++d) {
-      double a = 1e300, b = -1e300;
-      for (int k = 0; k < 3; ++k) {
-        a = std::min(a, x(tri_[t][k])[d]);
-        b = std::max(b, x(tri_[t][k])[d]);
-      }
-      range[t][d] = std::clamp((int)((a - radius - lo_[d]) / h_), 0, nb_[d] - 1);
-      range[t][3 + d] = std::clamp((int)((b + radius - lo_[d]) / h_), 0, nb_[d] - 1);
-    }
-  }
-  bin_start_.assign(nbins + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<int> fill;
-    if (pass == 1) {
-      for (size_t b = 0; b < nbins; ++b)
-        bin_start_[b + 1] += bin_start_[b];
-      bin_tri_.resize(bin_start_[nbins]);
-      fill.assign(bin_start_.begin(), bin_start_.end() - 1);
-    }
-    for (int t = 0; t < nt; ++t)
-      for (int i = range[t][0]; i <= range[t][3]; ++i)
-        for (int j = range[t][1]; j <= range[t][4]; ++j)
-          for (int k = range[t][2]; k <= range[t][5]; ++k) {
-            const size_t b = ((size_t)k * nb_[1] + j) * nb_[0] + i;
-            if (pass == 0)
-              bin_start_[b + 1]++;
-            else
-              bin_tri_[fill[b]++] = t;
-          }
-  }
+  bins_.build(x_, tri_, radius);
 }
 
 void ContactSurface::near(const double p[3], const std::function<void(int)> &f) const {
-  int c[3];
-  for (int d = 0; d < 3; ++d) {
-    const double s = (p[d] - lo_[d]) / h_;
-    if (s < 0 || s >= nb_[d]) return;
-    c[d] = (int)s;
-  }
-  const size_t b = ((size_t)c[2] * nb_[1] + c[1]) * nb_[0] + c[0];
-  for (int i = bin_start_[b]; i < bin_start_[b + 1]; ++i)
-    f(bin_tri_[i]);
+  bins_.near(p, f);
 }
 
 } // namespace fsi

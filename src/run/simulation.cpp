@@ -61,6 +61,7 @@ Simulation::Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &
   else
     material_X_ = space_.X;
   build_physics(mesh);
+  geometry_monitor_ = opt::flag("ale_geometry_monitor", false);
   U_ = space_.create_global();
   FSI_CALL(PetscObjectSetName((PetscObject)U_, "solution"));
   Sloc_ = space_.create_local();
@@ -111,7 +112,15 @@ void Simulation::build_physics(const Mesh &mesh) {
                        " connected piece(s): contact acts between pieces (no self-contact), so "
                        "it needs at least 2; check -contact_surface");
     if (scene_.contact) {
-      auto c = std::make_unique<ContactModule>(surface, cp);
+      std::shared_ptr<ContactWall> wall;
+      if (!cp.walls.empty()) {
+        if (!fluid_)
+          throw InputError("-contact_walls needs a fluid: the walls are fluid boundary groups");
+        mesh.require_groups(cp.walls, "the rigid contact walls (-contact_walls)");
+        wall = std::make_shared<ContactWall>(space_, mesh, cp.walls, fluid_->cells(),
+                                             std::max(cp.wall_exclude, 3 * cp.wall_offset));
+      }
+      auto c = std::make_unique<ContactModule>(surface, cp, wall);
       contact_ = c.get();
       system_->add_module(std::move(c));
     }
@@ -340,6 +349,9 @@ StepStats Simulation::step(const StepErrorTolerance *tol) {
     move_mesh(d2);
     s.geometry_iterations = pass + 1;
     s.geometry_change = ale_->relative_change(d2);
+    if (geometry_monitor_)
+      PetscPrintf(PETSC_COMM_WORLD, "  geometry pass %d: Newton %d, mesh change %.3e\n", pass + 1,
+                  (int)r.newton, s.geometry_change);
     if (s.geometry_change <= ale_->geometry_rtol()) break;
     ale_->set_geometry(d2, time_->alpha_f(), dt, steady);
     ale_->check("during", next);
@@ -375,12 +387,16 @@ std::vector<std::string> Simulation::monitor_columns() const {
   if (contact_)
     for (auto c : {"contact_pairs", "contact_max_penetration", "contact_force"})
       columns.push_back(c);
+  if (contact_ && !contact_->params().walls.empty())
+    for (auto c : {"contact_wall_pairs", "contact_wall_min_gap"})
+      columns.push_back(c);
   if (seal_)
     for (auto c : {"seal_cells", "seal_max_alpha"})
       columns.push_back(c);
   if (ale_->moving())
-    for (auto c : {"mesh_min_jacobian", "mesh_max_skewness", "mesh_min_jacobian_x",
-                   "mesh_min_jacobian_y", "mesh_min_jacobian_z", "geometry_iterations"})
+    for (auto c :
+         {"mesh_min_jacobian", "mesh_max_skewness", "mesh_min_jacobian_x", "mesh_min_jacobian_y",
+          "mesh_min_jacobian_z", "geometry_iterations", "geometry_change"})
       columns.push_back(c);
   return columns;
 }
@@ -397,12 +413,15 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   if (contact_)
     row.insert(row.end(), {(double)contact_->stats().active_pairs,
                            contact_->stats().max_penetration, contact_->stats().force});
+  if (contact_ && !contact_->params().walls.empty())
+    row.insert(row.end(), {(double)contact_->stats().wall_pairs, contact_->stats().wall_min_gap});
   if (seal_)
     row.insert(row.end(), {(double)seal_->stats().sealing_cells, seal_->stats().max_alpha});
   if (ale_->moving())
-    row.insert(row.end(), {ale_->quality().min_jacobian, ale_->quality().max_skewness,
-                           ale_->quality().where[0], ale_->quality().where[1],
-                           ale_->quality().where[2], (double)s.geometry_iterations});
+    row.insert(row.end(),
+               {ale_->quality().min_jacobian, ale_->quality().max_skewness,
+                ale_->quality().where[0], ale_->quality().where[1], ale_->quality().where[2],
+                (double)s.geometry_iterations, s.geometry_change});
   if (fields_ && step_index() % out_.fields_every == 0) {
     Vec loc = space_.create_local(), dloc = space_.create_local();
     solution_local(loc);

@@ -12,9 +12,13 @@
 // connected parts of the surface: a piece never contacts itself (no self-contact).
 // Options (prefix -contact_): surface NAME (default "interface"), offset [m] (required),
 // penalty k [Pa/m], ramp s [m] (default offset / 4), pattern_margin [m] (default offset).
+// Rigid walls (contact_wall.hpp): -contact_walls GROUPS (fluid boundary groups, default none),
+// wall_offset [m] (default offset), wall_exclude [m] (default 2 wall_offset): the same pressure
+// law against the nearest wall triangle, on the surface node alone (the wall does not move).
 #pragma once
 #include "fsi/physics/contact_geometry.hpp"
 #include "fsi/physics/contact_surface.hpp"
+#include "fsi/physics/contact_wall.hpp"
 #include "fsi/physics/physics_module.hpp"
 #include <memory>
 #include <unordered_set>
@@ -24,6 +28,8 @@ namespace fsi {
 struct ContactParams {
   std::string surface = "interface";
   double offset = 0, penalty = 1e8, ramp = 0, margin = 0;
+  std::vector<std::string> walls; // rigid fluid boundary groups the surface keeps away from
+  double wall_offset = 0, wall_exclude = 0;
   static ContactParams from_options();
   // Contact pressure psi'(p) [Pa] and its derivative at penetration p = delta - d.
   double pressure(double p) const;
@@ -35,11 +41,16 @@ struct ContactStats {
   double max_penetration = 0; // max (offset - d) [m]
   double force = 0;           // sum of |contact force| over nodes / 2 [N]
   long pattern_misses = 0;    // Jacobian blocks left out (pair outside the pattern)
+  int wall_pairs = 0;         // surface nodes closer to a rigid wall than the wall offset
+  double wall_min_gap = 0;    // smallest node-to-wall distance [m] (capped at the search radius)
 };
 
 class ContactModule : public PhysicsModule {
 public:
-  ContactModule(std::shared_ptr<ContactSurface> surface, const ContactParams &p);
+  // wall: the rigid walls (null: none); contact with them is on for the surface nodes farther
+  // than p.wall_exclude from them in the surface's reference configuration.
+  ContactModule(std::shared_ptr<ContactSurface> surface, const ContactParams &p,
+                std::shared_ptr<ContactWall> wall = nullptr);
   std::string name() const override;
   void prepare(const StepContext &ctx) override { surface_->update(ctx); }
   void begin_solve(const StepContext &ctx) override;
@@ -67,7 +78,8 @@ private:
   pairs_within(double radius,
                bool all = false); // all: every triangle in range, not the nearest per piece
   // Calls f(nodes, penetration, node weight, g, H) for every pair closer than the offset, with
-  // the distance's gradient g and Hessian H in the 12 coordinates of nodes (node, triangle).
+  // the distance's gradient g and Hessian H in the 12 coordinates of nodes (node, triangle);
+  // against a wall triangle nodes[1..3] are -1 (only the node's 3 coordinates count).
   template <class F> void for_each_active(F &&f);
   static unsigned long long key(int a, int b) {
     if (a > b) std::swap(a, b);
@@ -75,6 +87,9 @@ private:
   }
   std::shared_ptr<ContactSurface> surface_;
   ContactParams p_;
+  std::shared_ptr<ContactWall> wall_;
+  std::vector<char> wall_node_; // surface nodes that contact the walls
+  double wall_min_gap_ = 0;
   std::unordered_set<unsigned long long> pattern_, pending_;
   bool changed_ = false;
   ContactStats stats_;

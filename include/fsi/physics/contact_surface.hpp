@@ -6,6 +6,7 @@
 // solid displacement at t_{n+alpha_f}; update() is collective.
 #pragma once
 #include "fsi/discretization/space.hpp"
+#include "fsi/physics/triangle_bins.hpp"
 #include "fsi/time/step_context.hpp"
 #include <array>
 #include <functional>
@@ -50,10 +51,7 @@ private:
   std::vector<std::array<int, 3>> tri_;
   int n_components_ = 0;
   MPI_Comm comm_;
-  // bins
-  double lo_[3] = {0, 0, 0}, h_ = 1;
-  int nb_[3] = {1, 1, 1};
-  std::vector<int> bin_start_, bin_tri_;
+  TriangleBins bins_;
 };
 
 } // namespace fsi

@@ -116,7 +116,8 @@ private:
   void restore(const RunState &s);
   void dirichlet_data(double t_np1);
   const Scene &scene_;
-  bool history_exact_ = true; // false on a new mesh until its first step is taken
+  bool geometry_monitor_ = false; // print each geometry pass's mesh change
+  bool history_exact_ = true;     // false on a new mesh until its first step is taken
   OutputNames out_;
   Space space_;
   std::vector<double> material_X_;
