@@ -64,6 +64,9 @@ const std::vector<Section> &sections() {
          "estimate (PI controller) | none"},
         {"ts_rtol", "0.01", "-", "error: relative tolerance on the velocity's local error"},
         {"ts_atol", "1e-3", "m/s", "error: absolute tolerance on the velocity's local error"},
+        {"ts_adapt_wnormtype", "infinity", "-",
+         "error: norm of the local error over the velocity dofs, infinity (largest) | 2 (root "
+         "mean square)"},
         {"ts_adapt_dt_max", "10 ts_dt", "s", "error: largest step"},
         {"ts_adapt_safety", "0.9", "-", "error: safety factor of the step-size controller"},
         {"ts_adapt_max_rejections", "5", "-", "error: rejections of one step before it is taken"},
@@ -123,7 +126,9 @@ const std::vector<Section> &sections() {
         {"ale_geometry_rtol", "1e-6", "-", "relative mesh change that ends geometry iterations"},
         {"ale_geometry_monitor", "false", "-",
          "print each geometry pass's Newton count and mesh change"},
-        {"ale_interface", "", "-", "mass-conservative fluid-solid interface (its physical name)"},
+        {"ale_interface", "", "-",
+         "mass-conservative fluid-solid interface (its physical name); not for thin light "
+         "structures such as leaflets (a two-step sawtooth grows: docs/valve.md)"},
         {"ale_min_jacobian", "0", "-", "stop when a fluid cell's volume ratio reaches this"},
         {"ale_max_skewness", "0.99", "-", "stop when a fluid cell's skewness reaches this"},
         {"ale_remesh_skewness", "0.9", "-",

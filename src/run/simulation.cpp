@@ -366,7 +366,7 @@ StepStats Simulation::step(const StepErrorTolerance *tol) {
                      " (t = " + std::to_string(t_np1) + "): " + SNESConvergedReasons[r.reason] +
                      "; try a smaller -ts_dt (or more load steps -ts_max_steps)");
   if (tol && !steady && time_->step_index() > 0 && history_exact_) {
-    s.error = time_->error_estimate(U_, space_.is_velocity, tol->atol, tol->rtol);
+    s.error = time_->error_estimate(U_, space_.is_velocity, tol->atol, tol->rtol, tol->rms);
     if (s.error > 1 && !tol->accept_any) throw StepRejected(s.error);
   }
   history_exact_ = true;

@@ -130,7 +130,7 @@ void GeneralizedAlpha::velocities_for_displacements(
   FSI_CALL(VecRestoreArrayRead(Dloc_, &d));
 }
 
-double GeneralizedAlpha::error_estimate(Vec U, IS is, double atol, double rtol) const {
+double GeneralizedAlpha::error_estimate(Vec U, IS is, double atol, double rtol, bool rms) const {
   PetscInt n, start;
   const PetscInt *idx;
   const PetscScalar *u, *v, *a;
@@ -140,20 +140,24 @@ double GeneralizedAlpha::error_estimate(Vec U, IS is, double atol, double rtol) 
   FSI_CALL(VecGetArrayRead(U, &u));
   FSI_CALL(VecGetArrayRead(Vn_, &v));
   FSI_CALL(VecGetArrayRead(An_, &a));
-  double m[2] = {0, 0}; // max |U - predictor|, max |U|
+  double m[2] = {0, 0}, sum[2] = {0, (double)n}; // max |U - predictor|, max |U|; sum of squares
   for (PetscInt k = 0; k < n; ++k) {
     const PetscInt i = idx[k] - start;
     const double ui = PetscRealPart(u[i]);
-    m[0] = std::max(m[0], std::fabs(ui - PetscRealPart(v[i]) - dt_ * PetscRealPart(a[i])));
+    const double e = std::fabs(ui - PetscRealPart(v[i]) - dt_ * PetscRealPart(a[i]));
+    m[0] = std::max(m[0], e);
     m[1] = std::max(m[1], std::fabs(ui));
+    sum[0] += e * e;
   }
   FSI_CALL(VecRestoreArrayRead(U, &u));
   FSI_CALL(VecRestoreArrayRead(Vn_, &v));
   FSI_CALL(VecRestoreArrayRead(An_, &a));
   FSI_CALL(ISRestoreIndices(is, &idx));
-  double g[2];
+  double g[2], gs[2];
   MPI_Allreduce(m, g, 2, MPI_DOUBLE, MPI_MAX, PetscObjectComm((PetscObject)U));
-  return g[0] / (atol + rtol * g[1]);
+  MPI_Allreduce(sum, gs, 2, MPI_DOUBLE, MPI_SUM, PetscObjectComm((PetscObject)U));
+  const double e = rms ? std::sqrt(gs[0] / std::max(gs[1], 1.0)) : g[0];
+  return e / (atol + rtol * g[1]);
 }
 
 void GeneralizedAlpha::advance(Vec U) {

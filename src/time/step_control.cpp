@@ -29,6 +29,7 @@ StepControl StepControl::from_options(double nominal_dt) {
   if (c.mode == error) {
     c.tol.rtol = opt::positive("ts_rtol", 0.01);
     c.tol.atol = opt::positive("ts_atol", 1e-3);
+    c.tol.rms = opt::choice("ts_adapt_wnormtype", "infinity", {"infinity", "2"}) == "2";
     c.dt_max = opt::positive("ts_adapt_dt_max", 10 * nominal_dt);
     if (c.dt_max < nominal_dt)
       throw InputError("option -ts_adapt_dt_max is smaller than the time step -ts_dt");

@@ -63,7 +63,8 @@ public:
   void advance(Vec U);
   // Local error estimate of the step to U (before advance): max over the dofs in `is` of
   // |U - (V_n + dt A_n)| / (atol + rtol max|U|), the corrector against an explicit predictor.
-  double error_estimate(Vec U, IS is, double atol, double rtol) const;
+  // rms: the root mean square over the dofs instead of the largest (-ts_adapt_wnormtype 2).
+  double error_estimate(Vec U, IS is, double atol, double rtol, bool rms = false) const;
 
 private:
   const Space &space_;

@@ -20,6 +20,7 @@ namespace fsi {
 // Tolerances of the error estimate, handed to the step that computes it.
 struct StepErrorTolerance {
   double atol = 0, rtol = 0;
+  bool rms = false;        // -ts_adapt_wnormtype 2: root mean square, else the max norm
   bool accept_any = false; // the step was rejected -ts_adapt_max_rejections times: take it
 };
 
