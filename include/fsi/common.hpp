@@ -23,6 +23,12 @@ struct DistortionError : SolveError {
   using SolveError::SolveError;
 };
 
+// A mesh just remeshed that its first step would already distort: the step is retried smaller
+// (the surfaces move fast there; a new mesh cannot help within one step).
+struct FreshMeshDistortion : DistortionError {
+  using DistortionError::DistortionError;
+};
+
 // The predicted (or iterated) fluid mesh calls for remeshing: the step is retried on a new mesh.
 struct RemeshNeeded : DistortionError {
   using DistortionError::DistortionError;

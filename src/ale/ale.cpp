@@ -131,6 +131,7 @@ void Ale::check(const char *when, long step) {
                   fresh_ ? " on a mesh just remeshed: reduce the time step"
                          : "; remeshing is off (-ale_remesh_skewness 0 or a prescribed motion): "
                            "turn it on, refine the mesh or stiffen the motion (-ale_stiffening 1)");
+    if (fresh_) throw FreshMeshDistortion(msg);
     throw DistortionError(msg);
   }
 }

@@ -22,6 +22,12 @@ bool attempt_step(MPI_Comm comm, Simulation &sim, StepControl &control, StepStat
                 "retrying with dt = %.4e s\n",
                 sim.step_index() + 1, e.error, dt, control.dt);
     return false;
+  } catch (FreshMeshDistortion &e) {
+    // The step's motion would flatten a cell of a mesh just made: take it in smaller pieces.
+    if (!control.cut()) throw;
+    PetscPrintf(comm, "fsi_app: step %ld: %s; retrying with dt = %.4e s\n", sim.step_index() + 1,
+                e.what(), control.dt);
+    return false;
   } catch (DistortionError &) {
     throw;
   } catch (SolveError &e) {

@@ -11,7 +11,8 @@
 //          -ts_adapt_max_rejections times (default 5) is taken as it is (counted): where the
 //          estimate is noise (it stops shrinking with dt) it would otherwise drive dt to dt_min.
 // Below -ts_adapt_dt_min (default dt / 1000) the run stops: checkpoint, reason, non-zero exit.
-// Steps that end on a distorted fluid mesh are not retried (a smaller step does not help there).
+// Steps that end on a distorted fluid mesh are not retried (a smaller step does not help there),
+// except on a mesh just remeshed, whose first step would distort it: retried with a cut step.
 #pragma once
 #include "fsi/common.hpp"
 
