@@ -18,13 +18,13 @@ ContactParams ContactParams::from_options() {
   p.walls = opt::list("contact_walls");
   p.wall_offset = opt::positive("contact_wall_offset", p.offset);
   p.wall_exclude = opt::positive("contact_wall_exclude", 2 * p.wall_offset);
-  if (p.ramp > p.wall_offset)
-    throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
-                     ") must not exceed -contact_wall_offset (" + std::to_string(p.wall_offset) +
-                     ")");
   if (p.ramp > p.offset)
     throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
                      ") must not exceed -contact_offset (" + std::to_string(p.offset) + ")");
+  if (!p.walls.empty() && p.ramp > p.wall_offset)
+    throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
+                     ") must not exceed -contact_wall_offset (" + std::to_string(p.wall_offset) +
+                     ")");
   return p;
 }
 

@@ -1,5 +1,6 @@
 #include "fsi/physics/contact_surface.hpp"
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/mpi_gather.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,31 +10,6 @@
 namespace fsi {
 
 namespace {
-
-std::vector<int> counts_of(MPI_Comm comm, int n) {
-  int size;
-  MPI_Comm_size(comm, &size);
-  std::vector<int> c(size);
-  MPI_Allgather(&n, 1, MPI_INT, c.data(), 1, MPI_INT, comm);
-  return c;
-}
-
-std::vector<int> displacements(const std::vector<int> &counts) {
-  std::vector<int> d(counts.size(), 0);
-  for (size_t r = 1; r < counts.size(); ++r)
-    d[r] = d[r - 1] + counts[r - 1];
-  return d;
-}
-
-template <class T>
-std::vector<T> all_gather(MPI_Comm comm, const std::vector<T> &mine, MPI_Datatype type) {
-  auto counts = counts_of(comm, (int)mine.size());
-  auto displs = displacements(counts);
-  std::vector<T> all(displs.back() + counts.back());
-  MPI_Allgatherv(mine.data(), (int)mine.size(), type, all.data(), counts.data(), displs.data(),
-                 type, comm);
-  return all;
-}
 
 int find_root(std::vector<int> &parent, int i) {
   while (parent[i] != i)

@@ -1,4 +1,5 @@
 #include "fsi/physics/contact_wall.hpp"
+#include "fsi/mpi_gather.hpp"
 
 namespace fsi {
 
@@ -18,15 +19,7 @@ ContactWall::ContactWall(const Space &space, const Mesh &mesh,
       for (int k = 0; k < 3; ++k)
         for (int d = 0; d < 3; ++d)
           mine.push_back(space.X[3 * f.vertex[k] + d]);
-  int size, n = (int)mine.size();
-  MPI_Comm_size(comm, &size);
-  std::vector<int> counts(size), displs(size, 0);
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
-  for (int r = 1; r < size; ++r)
-    displs[r] = displs[r - 1] + counts[r - 1];
-  x_.resize(displs.back() + counts.back());
-  MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, x_.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                 comm);
+  x_ = all_gather(comm, mine, MPI_DOUBLE);
   for (int t = 0; t < (int)x_.size() / 9; ++t)
     tri_.push_back({3 * t, 3 * t + 1, 3 * t + 2});
   bins_.build(x_, tri_, radius);
