@@ -28,6 +28,8 @@ static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
 CoupledSystem::CoupledSystem(const Space &space) : space_(space) {
   inexact_gamma_ = opt::nonnegative("newton_inexact_gamma", 0.0);
   pattern_every_ = opt::integer("sim_pattern_rebuild_every", 0);
+  pc_rebuild_krylov_ = opt::integer("newton_pc_rebuild_krylov", 0);
+  if (pc_rebuild_krylov_ < 0) throw InputError("option -newton_pc_rebuild_krylov must be >= 0");
   if (pattern_every_ < 0) throw InputError("option -sim_pattern_rebuild_every must be >= 0");
   F_ = space.create_global();
   Uloc_ = space.create_local();
@@ -125,6 +127,7 @@ void CoupledSystem::create_solver() {
     FSI_CALL(KSPGetTolerances(ksp, &ksp_rtol_min_, &atol, &dtol, &maxit));
     FSI_CALL(SNESMonitorSet(snes_, inexact_monitor, this, nullptr));
   }
+  if (pc_rebuild_krylov_ > 0) FSI_CALL(SNESMonitorSet(snes_, pc_rebuild_monitor, this, nullptr));
   FSI_CALL(KSPGetPC(ksp, &pc));
   PetscBool fs;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
@@ -153,6 +156,23 @@ PetscErrorCode CoupledSystem::inexact_monitor(SNES snes, PetscInt it, PetscReal 
   double eta = fnorm > 0 ? self->inexact_gamma_ * target / fnorm : 0.5;
   eta = std::min(0.5, std::max(self->ksp_rtol_min_, eta));
   PetscCall(KSPSetTolerances(ksp, eta, ka, kd, kmax));
+  return 0;
+}
+
+// Called before each Newton iteration's Jacobian: the previous linear solve (of this step, or of
+// the last one at iteration 0) is how well the lagged preconditioner still works.
+PetscErrorCode CoupledSystem::pc_rebuild_monitor(SNES snes, PetscInt, PetscReal, void *ctx) {
+  auto *self = static_cast<CoupledSystem *>(ctx);
+  KSP ksp;
+  PetscInt its, lag;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetIterationNumber(ksp, &its));
+  PetscCall(SNESGetLagPreconditioner(snes, &lag));
+  if (lag > 1 && its > self->pc_rebuild_krylov_) {
+    self->lag_to_restore_ = lag;
+    PetscCall(SNESSetLagPreconditioner(snes, -2)); // at the next Jacobian, then kept
+    ++self->cost_.preconditioner_rebuilds;
+  }
   return 0;
 }
 
@@ -208,15 +228,20 @@ SolveStats CoupledSystem::solve(Vec U) {
 
   FSI_CALL(PetscLogStagePush(Stages::get().solve));
   inverted_ = false;
-  PetscInt lag = 0;
+  lag_to_restore_ = 0;
   if (rebuild_preconditioner_) { // -2: at the next Jacobian, then back to the lag
-    FSI_CALL(SNESGetLagPreconditioner(snes_, &lag));
+    FSI_CALL(SNESGetLagPreconditioner(snes_, &lag_to_restore_));
     FSI_CALL(SNESSetLagPreconditioner(snes_, -2));
     rebuild_preconditioner_ = false;
   }
   const double t0 = MPI_Wtime();
   FSI_CALL(SNESSolve(snes_, nullptr, U));
-  if (lag > 1) FSI_CALL(SNESSetLagPreconditioner(snes_, lag));
+  if (lag_to_restore_ > 1) {
+    PetscInt now;
+    FSI_CALL(SNESGetLagPreconditioner(snes_, &now));
+    if (now == -2) rebuild_preconditioner_ = true; // asked for after the last Jacobian: next solve
+    FSI_CALL(SNESSetLagPreconditioner(snes_, lag_to_restore_));
+  }
   cost_.nonlinear_solve_time += MPI_Wtime() - t0;
   FSI_CALL(PetscLogStagePop());
   SolveStats s;

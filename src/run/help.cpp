@@ -210,7 +210,9 @@ const std::vector<Section> &sections() {
         {"fieldsplit_pressure_pc_type", "", "-", "pcd: convection-aware Schur preconditioner"},
         {"jac_*", "", "-", "options of the Jacobian matrix (prefix jac_)"},
         {"newton_inexact_gamma", "0 (off)", "-",
-         "linear solves only to gamma x the Newton target (|F0| snes_rtol), >= ksp_rtol"}}},
+         "linear solves only to gamma x the Newton target (|F0| snes_rtol), >= ksp_rtol"},
+        {"newton_pc_rebuild_krylov", "0 (off)", "-",
+         "a lagged preconditioner is rebuilt when a linear solve took more Krylov iterations"}}},
   };
   return s;
 }

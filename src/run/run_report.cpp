@@ -49,6 +49,7 @@ void RunReport::absorb(const Simulation &sim) {
   jacobians_ += c.jacobians;
   residuals_ += c.residuals;
   pattern_builds_ += c.pattern_builds;
+  pc_rebuilds_ += c.preconditioner_rebuilds;
   jacobian_time_ += c.jacobian_time;
   residual_time_ += c.residual_time;
   solve_time_ += c.nonlinear_solve_time;
@@ -109,6 +110,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
   cost.set("jacobians", jacobians_)
       .set("residuals", residuals_)
       .set("matrix_patterns", pattern_builds_)
+      .set("preconditioner_rebuilds_forced", pc_rebuilds_)
       .set("linear_solver_seconds_per_newton", newton_ ? ls / newton_ : 0.0)
       .set("jacobian_tets_per_second_per_rank",
            jt > 0 ? double(fc_g + sc_g) / size * jacobians_ / jt : 0.0)

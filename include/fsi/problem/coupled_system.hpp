@@ -25,6 +25,7 @@ struct SolveStats {
 
 struct CostCounters {
   long residuals = 0, jacobians = 0, pattern_builds = 0;
+  long preconditioner_rebuilds = 0; // forced by -newton_pc_rebuild_krylov
   double residual_time = 0, jacobian_time = 0, nonlinear_solve_time = 0;
 };
 
@@ -82,6 +83,13 @@ private:
   // -ksp_rtol (ksp_rtol_min_) nor looser than 0.5.
   double inexact_gamma_ = 0, ksp_rtol_min_ = 0, newton_f0_ = 0;
   static PetscErrorCode inexact_monitor(SNES, PetscInt, PetscReal, void *);
+  // A preconditioner lagged over iterations and steps (a reused LU) is rebuilt at the next
+  // Jacobian when the last linear solve needed more than this many Krylov iterations
+  // (-newton_pc_rebuild_krylov N, 0 = off): a stale factorisation costs more in GMRES
+  // iterations than a new one costs.
+  long pc_rebuild_krylov_ = 0;
+  PetscInt lag_to_restore_ = 0; // the lag to set back after a solve that forced a rebuild
+  static PetscErrorCode pc_rebuild_monitor(SNES, PetscInt, PetscReal, void *);
   Vec F_ = nullptr, Uloc_ = nullptr, Floc_ = nullptr;
   Mat J_ = nullptr;
   SNES snes_ = nullptr;

@@ -45,7 +45,7 @@ private:
   std::vector<std::string> names_;
   std::vector<double> min_, max_, t_min_, t_max_, last_;
   long steps_ = 0, newton_ = 0, krylov_ = 0, newton_max_ = 0, krylov_max_ = 0, failed_ = 0;
-  long rebuilds_ = 0, jacobians_ = 0, residuals_ = 0, pattern_builds_ = 0;
+  long rebuilds_ = 0, jacobians_ = 0, residuals_ = 0, pattern_builds_ = 0, pc_rebuilds_ = 0;
   double setup_time_ = 0, output_time_ = 0, rebuild_time_ = 0;
   std::vector<RemeshReport> remeshes_;
   double jacobian_time_ = 0, residual_time_ = 0, solve_time_ = 0, mesh_motion_time_ = 0;
