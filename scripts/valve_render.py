@@ -14,8 +14,10 @@ from paraview.simple import (ColorBy, CreateRenderView, GetColorTransferFunction
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
 
 d = sys.argv[1]
-# A run that remeshed has its fields on several meshes, all listed in fields_all.xdmf.
-fields = "fields_all.xdmf" if os.path.exists(os.path.join(d, "fields_all.xdmf")) else "fields.xdmf"
+# A run that remeshed has its fields on several meshes, all listed in fields_all.xdmf; a run
+# continued by -restart writes fields_restart(_all).xdmf beside them: the newest list is used.
+lists = [f for f in os.listdir(d) if re.fullmatch(r"fields(_restart)?(_all)?\.xdmf", f)]
+fields = max(lists, key=lambda f: os.path.getmtime(os.path.join(d, f)))
 reader = Xdmf3ReaderS(FileName=[os.path.join(d, fields)])
 times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
 wanted = [float(t) for t in sys.argv[2:]] or [times[-1]]

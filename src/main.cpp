@@ -120,7 +120,13 @@ int run(MPI_Comm comm) {
         RemeshReport r;
         report.absorb(*sim);
         RunState st = state();
-        remesh(comm, sim, mesh, names, st, remesh_options, r);
+        try {
+          remesh(comm, sim, mesh, names, st, remesh_options, r);
+        } catch (...) { // the checkpoint names the mesh the simulation is on by now
+          mesh_file = st.mesh_file;
+          remeshes = st.remeshes;
+          throw;
+        }
         field_parts.push_back(names.fields);
         mesh_file = st.mesh_file;
         remeshes = st.remeshes;

@@ -165,4 +165,27 @@ check(os.path.exists(os.path.join(rf.dir, "checkpoint.h5")), "the last converged
 check("Signal:" not in rf.out and "terminate called" not in rf.out, "no crash or backtrace")
 if os.path.exists(os.path.join(rf.dir, "summary.json")):
     check(rf.summary["converged"] is False, "summary says the run did not complete")
+
+# 5. A failure once the run is on the new mesh: its checkpoint names that mesh, and resumes.
+rg = run(BLOCK, extra=mild + ["-ale_remesh_every", "2", "-ale_remesh_test_fault", "2"])
+check(rg.code == 3 and os.path.exists(os.path.join(rg.dir, "checkpoint.h5")),
+      f"a failure after the rebuild: exit 3 ({rg.code}) and a checkpoint")
+if rg.code == 3:
+    rr = run(BLOCK, extra=mild + ["-restart", os.path.join(rg.dir, "checkpoint.h5")])
+    check(rr.code == 0, "that checkpoint (on the new mesh) resumes")
+
+# 6. The projection after a remesh fails (made to: one Richardson iteration): the run goes on
+# with the interpolated velocity, says so once per remesh, and stays close to the projected run.
+bad_projection = ["-remesh_projection_ksp_type", "richardson", "-remesh_projection_ksp_max_it", "1",
+                  "-remesh_projection_pc_type", "jacobi"]
+rp = run(BLOCK, extra=mild + ["-ale_remesh_every", "2"] + bad_projection)
+warned = [l for l in rp.out.splitlines() if "divergence-free projection after remesh" in l]
+check(rp.code == 0 and len(warned) == 2, f"a failed projection: the run goes on, one warning per remesh ({len(warned)})")
+if rp.code == 0 and re_.code == 0:
+    rows = csv_rows(os.path.join(rp.dir, "remesh.csv"))
+    check(all(r["weak_divergence_projected"] == -1 for r in rows), "remesh.csv: not projected (-1)")
+    a, b = [m["probe0_vx"] for m in re_.monitor], [m["probe0_vx"] for m in rp.monitor]
+    d = max(abs(x - y) for x, y in zip(a, b)) / max(abs(x) for x in a)
+    print(f"probe0_vx without the projection: {d:.2e} of its scale from the projected run")
+    check(d < 0.05, f"without the projection the flow stays within 5 % ({d:.2e})")
 finish()

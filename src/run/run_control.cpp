@@ -84,10 +84,19 @@ void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mes
   names.fields = "remesh" + std::to_string(k) + "_fields";
   names.hemo = "remesh" + std::to_string(k) + "_hemo";
   sim = std::make_unique<Simulation>(*mesh, scene, names, &next);
+  // From here the run is on the new mesh: a failure below checkpoints it there.
+  state.mesh_file = next.mesh_file;
+  state.remeshes = next.remeshes;
+  if (options.test_fault == 2) throw SolveError("remesh test fault after the rebuild");
   sim->set_fresh_mesh();
   const ProjectionReport pr = sim->project_velocity(options.project);
+  if (!pr.failure.empty())
+    PetscPrintf(comm,
+                "fsi_app: warning: the divergence-free projection after remesh %ld failed (%s): "
+                "the interpolated velocity is kept (weak divergence %.1e)\n",
+                k, pr.failure.c_str(), pr.before);
   report.weak_divergence = pr.before;
-  report.weak_divergence_projected = options.project ? pr.after : -1;
+  report.weak_divergence_projected = options.project && pr.failure.empty() ? pr.after : -1;
   report.projection_seconds = pr.seconds;
   state = std::move(next);
   report.seconds = MPI_Wtime() - t0;

@@ -40,7 +40,8 @@ struct RemeshError : SolveError {
 struct RemeshOptions {
   double hmax = 0;      // -ale_remesh_hmax
   bool verbose = false; // -ale_remesh_verbose
-  int test_fault = 0;   // -ale_remesh_test_fault 1: a boundary vertex thrown across the domain
+  int test_fault = 0;   // -ale_remesh_test_fault 1: a boundary vertex thrown across the domain;
+                        // 2: a failure once the run is on the new mesh
   double gap_cells = 2; // -ale_remesh_gap_cells: cells across a gap thinner than its triangles
   double flip_skewness = 0.8; // -ale_remesh_flip_skewness: flip cells worse than this (0: off)
   bool project = true;        // -ale_remesh_project: make the new velocity divergence-free

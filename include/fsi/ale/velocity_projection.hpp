@@ -9,6 +9,7 @@
 // -remesh_projection_ (default: MUMPS LU).  The pressure in V is left as it was.
 #pragma once
 #include "fsi/discretization/space.hpp"
+#include <string>
 #include <vector>
 
 namespace fsi {
@@ -18,6 +19,7 @@ struct ProjectionReport {
   // |grad v|: what Taylor-Hood keeps at zero (the L2 divergence it does not).
   double before = 0, after = 0;
   double seconds = 0;
+  std::string failure; // the linear solver's reason when the projection failed (V unchanged)
 };
 
 // V: global [velocity, pressure] vector, changed in place.  X: current local vertex coordinates
