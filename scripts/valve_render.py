@@ -19,7 +19,8 @@ d = sys.argv[1]
 lists = [f for f in os.listdir(d) if re.fullmatch(r"fields(_restart)?(_all)?\.xdmf", f)]
 fields = max(lists, key=lambda f: os.path.getmtime(os.path.join(d, f)))
 reader = Xdmf3ReaderS(FileName=[os.path.join(d, fields)])
-times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
+tv = reader.TimestepValues  # a float when the file holds one time
+times = [float(tv)] if isinstance(tv, (int, float)) else (list(tv) if tv else [0.0])
 wanted = [float(t) for t in sys.argv[2:]] or [times[-1]]
 reader.UpdatePipeline(times[0])  # the arrays are known after a first update
 if "region" not in reader.CellData.keys():
