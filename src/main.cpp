@@ -120,16 +120,20 @@ int run(MPI_Comm comm) {
         RemeshReport r;
         report.absorb(*sim);
         RunState st = state();
-        try {
-          remesh(comm, sim, mesh, names, st, remesh_options, r);
-        } catch (...) { // the checkpoint names the mesh the simulation is on by now
+        // st names the mesh the simulation is on, also when remesh() fails after the rebuild:
+        // the checkpoint must name it.
+        auto adopt = [&]() {
           mesh_file = st.mesh_file;
           remeshes = st.remeshes;
+        };
+        try {
+          remesh(comm, sim, mesh, names, st, remesh_options, r);
+        } catch (...) {
+          adopt();
           throw;
         }
+        adopt();
         field_parts.push_back(names.fields);
-        mesh_file = st.mesh_file;
-        remeshes = st.remeshes;
         report.remeshed(out, r);
       };
       bool accepted;
