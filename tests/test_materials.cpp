@@ -17,6 +17,7 @@ static void check(bool ok, const char *what, double v) {
 }
 
 int main() {
+  bool threw = false;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-0.25, 0.25);
   double F[3][3];
@@ -25,14 +26,15 @@ int main() {
       F[i][j] = (i == j ? 1.0 + 0.3 * (i - 1) : 0.0) + u(rng);
   struct Case {
     const char *kind;
-    double p1, p2, p3;
+    double p1, p2, p3, e1 = 0, e2 = 0;
   };
   const Case cases[] = {{"linear", 3e5, 0.3, 0},
                         {"svk", 3e5, 0.3, 0},
                         {"neo_hookean", 1e5, 1e7, 0},
-                        {"mooney_rivlin", 8.25e3, 0.5e3, 8.75e6}};
+                        {"mooney_rivlin", 8.25e3, 0.5e3, 8.75e6},
+                        {"mooney_rivlin", 30420, 3380, 3.38e6, 13.3e3, 38.2}};
   for (const Case &c : cases) {
-    auto m = make_material(c.kind, c.p1, c.p2, c.p3);
+    auto m = make_material(c.kind, c.p1, c.p2, c.p3, c.e1, c.e2);
     double P[3][3], Pt[3][3], A[3][3][3][3];
     m->stress(F, P);
     m->tangent(F, Pt, A);
@@ -60,18 +62,19 @@ int main() {
           }
       }
     char msg[128];
-    std::snprintf(msg, sizeof msg, "%s: P = dW/dF (relative error)", c.kind);
+    const char *kind = c.e1 > 0 ? "mooney_rivlin+exp" : c.kind;
+    std::snprintf(msg, sizeof msg, "%s: P = dW/dF (relative error)", kind);
     check(std::sqrt(eP / nP) < 1e-6, msg, std::sqrt(eP / nP));
-    std::snprintf(msg, sizeof msg, "%s: tangent = dP/dF (relative error)", c.kind);
+    std::snprintf(msg, sizeof msg, "%s: tangent = dP/dF (relative error)", kind);
     check(std::sqrt(eA / nA) < 1e-6, msg, std::sqrt(eA / nA));
-    std::snprintf(msg, sizeof msg, "%s: tangent call returns the same P", c.kind);
+    std::snprintf(msg, sizeof msg, "%s: tangent call returns the same P", kind);
     check(std::sqrt(eC / nP) < 1e-14, msg, std::sqrt(eC / nP));
     // Stress-free reference state.
     double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P0[3][3], n0 = 0;
     m->stress(I, P0);
     for (auto &r : P0)
       n0 += r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
-    std::snprintf(msg, sizeof msg, "%s: P(I) = 0", c.kind);
+    std::snprintf(msg, sizeof msg, "%s: P(I) = 0", kind);
     check(std::sqrt(n0) < 1e-9 * c.p1, msg, std::sqrt(n0));
   }
   // Mooney-Rivlin uniaxial tension at a material point (kappa/mu = 1000): free lateral stretch
@@ -95,9 +98,41 @@ int main() {
     check(worst < 0.005, "mooney_rivlin: uniaxial nominal stress within 0.5% of closed form",
           worst);
   }
+  // The same with the exponential term (the valve's leaflets): dW/dI1 = C10 + e1 e2 x exp(e2 x^2),
+  // x = I1 - 3, I1 = l^2 + 2/l, stretches 1.0 .. 1.3 (the stress grows 1000-fold).
+  {
+    // kappa 1e5 times the small-strain modulus: at l = 1.3 the tangent shear modulus is 25 times
+    // it.
+    const double C10 = 30420, C01 = 3380, kappa = 1e5 * 2 * (C10 + C01), e1 = 13.3e3, e2 = 38.2;
+    auto m = make_material("mooney_rivlin", C10, C01, kappa, e1, e2);
+    double worst = 0;
+    for (double l = 1.025; l <= 1.3001; l += 0.025) {
+      double lo = 0.5, hi = 1.0, Pl[3][3];
+      for (int it = 0; it < 100; ++it) {
+        const double t = 0.5 * (lo + hi);
+        double Fu[3][3] = {{l, 0, 0}, {0, t, 0}, {0, 0, t}};
+        m->stress(Fu, Pl);
+        (Pl[1][1] > 0 ? hi : lo) = t;
+      }
+      const double x = l * l + 2 / l - 3;
+      const double exact =
+          2 * (l - 1 / (l * l)) * (C10 + e1 * e2 * x * std::exp(e2 * x * x) + C01 / l);
+      worst = std::max(worst, std::fabs(Pl[0][0] / exact - 1));
+    }
+    check(worst < 0.005, "mooney_rivlin+exp: uniaxial nominal stress within 0.5% of closed form",
+          worst);
+  }
+  // Bad exponential parameters.
+  threw = false;
+  try {
+    make_material("mooney_rivlin", 8e3, 5e2, 1e7, 1e4, 0);
+  } catch (InputError &) {
+    threw = true;
+  }
+  check(threw, "exponential term: c1 > 0 with c2 = 0 rejected", 0);
   // An inverted element is an error, not a NaN.
   double Finv[3][3] = {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P[3][3];
-  bool threw = false;
+  threw = false;
   try {
     make_material("mooney_rivlin", 8e3, 5e2, 1e7)->stress(Finv, P);
   } catch (SolveError &) {

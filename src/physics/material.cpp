@@ -60,6 +60,16 @@ template <typename T, int N> Dual<T, N> power(const Dual<T, N> &a, double p) {
     r.d[i] = f * a.d[i];
   return r;
 }
+inline double expo(double x) {
+  return std::exp(x);
+}
+template <typename T, int N> Dual<T, N> expo(const Dual<T, N> &a) {
+  Dual<T, N> r;
+  r.v = expo(a.v);
+  for (int i = 0; i < N; ++i)
+    r.d[i] = r.v * a.d[i];
+  return r;
+}
 inline double value(double x) {
   return x;
 }
@@ -79,8 +89,16 @@ template <typename S> void cauchy_green(const S F[9], S C[9], S &I1, S &I2) {
   I2 = 0.5 * (I1 * I1 - trC2);
 }
 
+// The isotropic exponential (Fung-type, the isotropic part of the Lee-Sacks leaflet law) added to
+// the split laws: W_e = e1/2 (exp(e2 (I1bar - 3)^2) - 1), dW_e/dI1bar = e1 e2 x exp(e2 x^2) with
+// x = I1bar - 3.  No stiffness at small strain; it stiffens the leaflets the way collagen does.
+struct Exponential {
+  double e1 = 0, e2 = 0; // [Pa], [-]
+};
+
 // Isochoric/volumetric Mooney-Rivlin energy (neo-Hookean when c01 = 0), generic in the scalar.
-template <typename S> S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa) {
+template <typename S>
+S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa, Exponential ex) {
   // J = det F
   S J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
         F[2] * (F[3] * F[7] - F[4] * F[6]);
@@ -88,15 +106,18 @@ template <typename S> S mooney_rivlin_energy(const S F[9], double c10, double c0
   S C[9], I1, I2;
   cauchy_green(F, C, I1, I2);
   S I1b = power(J, -2.0 / 3.0) * I1, I2b = power(J, -4.0 / 3.0) * I2;
-  S Jm1 = J + (-1.0);
-  return c10 * (I1b + (-3.0)) + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1);
+  S Jm1 = J + (-1.0), x = I1b + (-3.0);
+  return c10 * x + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1) +
+         (0.5 * ex.e1) * (expo(ex.e2 * (x * x)) + (-1.0));
 }
 
 // Its first Piola-Kirchhoff stress in closed form, generic in the scalar (a dual number gives the
 // exact tangent in one forward pass).  With a = J^(-2/3), cof F = J F^-T:
-//   P = 2 c10 a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F.
+//   P = 2 c10 a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F,
+// with the exponential term adding dW_e/dI1bar to c10.
 template <typename S>
-void mooney_rivlin_stress(const S F[9], double c10, double c01, double kappa, S P[9]) {
+void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, Exponential ex,
+                          S P[9]) {
   S cof[9]; // cofactor matrix, row-major: cof_iJ = dJ/dF_iJ
   cof[0] = F[4] * F[8] - F[5] * F[7];
   cof[1] = F[5] * F[6] - F[3] * F[8];
@@ -112,10 +133,12 @@ void mooney_rivlin_stress(const S F[9], double c10, double c01, double kappa, S 
   S C[9], I1, I2;
   cauchy_green(F, C, I1, I2);
   S Jinv = power(J, -1.0), a = power(J, -2.0 / 3.0);
-  S a2 = a * a;
-  S s1 = (2 * c10) * a, s2 = (2 * c01) * a2;
+  S a2 = a * a, x = a * I1 + (-3.0);
+  S c10 = (ex.e1 * ex.e2) * (x * expo(ex.e2 * (x * x))) + c10_;
+  S s1 = 2.0 * (c10 * a), s2 = (2 * c01) * a2;
   // coefficient of cof F: -2/3 c10 a I1 / J - 4/3 c01 a^2 I2 / J + kappa (J - 1)
-  S kc = ((-2.0 / 3.0 * c10) * a * I1 + (-4.0 / 3.0 * c01) * a2 * I2) * Jinv + kappa * (J + (-1.0));
+  S kc =
+      ((-2.0 / 3.0) * (c10 * a * I1) + (-4.0 / 3.0 * c01) * a2 * I2) * Jinv + kappa * (J + (-1.0));
   for (int i = 0; i < 3; ++i)
     for (int L = 0; L < 3; ++L) {
       S FC = F[3 * i] * C[L] + F[3 * i + 1] * C[3 + L] + F[3 * i + 2] * C[6 + L];
@@ -126,21 +149,22 @@ void mooney_rivlin_stress(const S F[9], double c10, double c01, double kappa, S 
 struct SplitLaw : Material {
   std::string kind;
   double c10, c01, kappa;
-  SplitLaw(std::string k, double a, double b, double c)
-      : kind(std::move(k)), c10(a), c01(b), kappa(c) {}
+  Exponential ex;
+  SplitLaw(std::string k, double a, double b, double c, Exponential e)
+      : kind(std::move(k)), c10(a), c01(b), kappa(c), ex(e) {}
   std::string name() const override { return kind; }
   double energy(const double F[3][3]) const override {
-    return mooney_rivlin_energy(&F[0][0], c10, c01, kappa);
+    return mooney_rivlin_energy(&F[0][0], c10, c01, kappa, ex);
   }
   void stress(const double F[3][3], double P[3][3]) const override {
-    mooney_rivlin_stress(&F[0][0], c10, c01, kappa, &P[0][0]);
+    mooney_rivlin_stress(&F[0][0], c10, c01, kappa, ex, &P[0][0]);
   }
   void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const override {
     using D = Dual<double, 9>;
     D f[9], p[9];
     for (int m = 0; m < 9; ++m)
       f[m].v = (&F[0][0])[m], f[m].d[m] = 1;
-    mooney_rivlin_stress(f, c10, c01, kappa, p);
+    mooney_rivlin_stress(f, c10, c01, kappa, ex, p);
     for (int m = 0; m < 9; ++m) {
       (&P[0][0])[m] = p[m].v;
       for (int k = 0; k < 9; ++k)
@@ -225,7 +249,16 @@ void check_modulus(const std::string &name, double v) {
 
 } // namespace
 
-std::unique_ptr<Material> make_material(const std::string &kind, double p1, double p2, double p3) {
+std::unique_ptr<Material> make_material(const std::string &kind, double p1, double p2, double p3,
+                                        double e1, double e2) {
+  if (!(e1 >= 0) || !(e2 >= 0) || (e1 > 0) != (e2 > 0))
+    throw InputError("options -solid_exp_c1 [Pa] and -solid_exp_c2 [-] must both be positive "
+                     "(or both 0: no exponential term), got " +
+                     std::to_string(e1) + ", " + std::to_string(e2));
+  if (e1 > 0 && (kind == "linear" || kind == "svk"))
+    throw InputError("options -solid_exp_c1/-solid_exp_c2 need -solid_material neo_hookean or "
+                     "mooney_rivlin, not " +
+                     kind);
   if (kind == "linear" || kind == "svk") { // p1 = E, p2 = nu
     check_modulus("E", p1);
     if (!(p2 > -1 && p2 < 0.5))
@@ -238,13 +271,13 @@ std::unique_ptr<Material> make_material(const std::string &kind, double p1, doub
   if (kind == "neo_hookean") { // p1 = mu, p2 = kappa
     check_modulus("mu", p1);
     check_modulus("kappa", p2);
-    return std::make_unique<SplitLaw>(kind, 0.5 * p1, 0.0, p2);
+    return std::make_unique<SplitLaw>(kind, 0.5 * p1, 0.0, p2, Exponential{e1, e2});
   }
   if (kind == "mooney_rivlin") { // p1 = C10, p2 = C01, p3 = kappa
     check_modulus("C10", p1);
     if (!(p2 >= 0)) throw InputError("option -solid_C01 must be >= 0");
     check_modulus("kappa", p3);
-    return std::make_unique<SplitLaw>(kind, p1, p2, p3);
+    return std::make_unique<SplitLaw>(kind, p1, p2, p3, Exponential{e1, e2});
   }
   throw InputError("option -solid_material has unknown value '" + kind +
                    "'; use one of: linear, svk, neo_hookean, mooney_rivlin");
@@ -253,19 +286,21 @@ std::unique_ptr<Material> make_material(const std::string &kind, double p1, doub
 std::unique_ptr<Material> make_material() {
   const std::string kind =
       opt::choice("solid_material", "linear", {"linear", "svk", "neo_hookean", "mooney_rivlin"});
+  const double e1 = opt::real("solid_exp_c1", 0), e2 = opt::real("solid_exp_c2", 0);
   if (kind == "linear" || kind == "svk")
-    return make_material(kind, opt::required_positive("solid_E"), opt::real("solid_nu", 0.3));
+    return make_material(kind, opt::required_positive("solid_E"), opt::real("solid_nu", 0.3), 0, e1,
+                         e2);
   if (kind == "neo_hookean") {
     if (opt::has("solid_E")) { // convert E, nu to mu, kappa
       const double E = opt::positive("solid_E", 1), nu = opt::real("solid_nu", 0.3);
       if (!(nu > -1 && nu < 0.5)) throw InputError("option -solid_nu must satisfy -1 < nu < 0.5");
-      return make_material(kind, E / (2 * (1 + nu)), E / (3 * (1 - 2 * nu)));
+      return make_material(kind, E / (2 * (1 + nu)), E / (3 * (1 - 2 * nu)), 0, e1, e2);
     }
     return make_material(kind, opt::required_positive("solid_mu"),
-                         opt::required_positive("solid_kappa"));
+                         opt::required_positive("solid_kappa"), 0, e1, e2);
   }
   return make_material(kind, opt::required_positive("solid_C10"), opt::nonnegative("solid_C01", 0),
-                       opt::required_positive("solid_kappa"));
+                       opt::required_positive("solid_kappa"), e1, e2);
 }
 
 } // namespace fsi

@@ -6,6 +6,8 @@
 //   neo_hookean    W = mu/2 (I1bar - 3) + kappa/2 (J - 1)^2   (-solid_mu, -solid_kappa, or E, nu)
 //   mooney_rivlin  W = C10 (I1bar - 3) + C01 (I2bar - 3) + kappa/2 (J - 1)^2
 //                  (-solid_C10, -solid_C01, -solid_kappa)
+//   either split law + e1/2 (exp(e2 (I1bar - 3)^2) - 1): isotropic Fung-type stiffening, the
+//                  isotropic part of the Lee-Sacks leaflet law (-solid_exp_c1 e1, -solid_exp_c2 e2)
 // For the split laws W(F) gives the energy, P is its closed-form derivative, and the tangent is
 // one forward-mode dual-number pass through that same P code; the unit test checks P against
 // finite differences of W and A against finite differences of P.  A cell with J <= 0 raises
@@ -27,6 +29,6 @@ struct Material {
 // Reads -solid_material and its parameters (validated: positive moduli, -1 < nu < 0.5).
 std::unique_ptr<Material> make_material();
 std::unique_ptr<Material> make_material(const std::string &kind, double p1, double p2,
-                                        double p3 = 0);
+                                        double p3 = 0, double e1 = 0, double e2 = 0);
 
 } // namespace fsi
