@@ -1,0 +1,163 @@
+"""Wall shear on the two sides of the leaflets, for the paper's claims (Figs. 11-12): WSS on the
+ventricular (inflow) side larger than on the aortic side, OSI highest near the free edge.
+  /usr/bin/python3 scripts/valve_wss_sides.py DIR [DIR ...] [--times T1,T2,...] [--surface NAME]
+                                              [--sampled T0,T1]
+DIRs: one run's pieces (continued by -restart), searched for every *hemo*.xdmf they hold.
+Prints (markdown), per requested time, the output step nearest to it: area-mean and 95th
+percentile of |tau_w| on the ventricular side, the aortic side and the rims (free edge and
+commissure faces across the thickness); and, for every closed window found (TAWSS, OSI), the same
+split plus OSI by distance from the free edge.  --sampled T0,T1 computes TAWSS and OSI the same
+way from the instantaneous outputs between T0 and T1 (every -out_fields_every steps, trapezoidal
+weights): an estimate for a stretch that no closed window covers (the run's own windows
+integrate every step).
+
+Sides, from the reference geometry alone (the faces of hemo.h5 are stored with their reference
+vertices): a face's outward normal points away from the face found across the leaflet's thickness
+(the nearest nearly parallel face within 1.5 mm); the ventricular side is the one whose outward
+normal points upstream or towards the axis in the nearly closed reference shape, n_z + n_r < 0."""
+import glob
+import os
+import re
+import sys
+
+import h5py
+import numpy as np
+
+args = sys.argv[1:]
+times, surface = [0.198, 0.66], "interface"
+if "--times" in args:
+    i = args.index("--times")
+    times = [float(t) for t in args[i + 1].split(",")]
+    del args[i:i + 2]
+sampled = None
+if "--sampled" in args:
+    i = args.index("--sampled")
+    sampled = [float(t) for t in args[i + 1].split(",")]
+    del args[i:i + 2]
+if "--surface" in args:
+    i = args.index("--surface")
+    surface = args[i + 1]
+    del args[i:i + 2]
+if not args:
+    sys.exit("usage: valve_wss_sides.py DIR [DIR ...] [--times T1,T2] [--surface NAME]")
+
+# Every instantaneous output: time -> (h5 file, group); every closed window: (t0, t1) -> group.
+samples, windows = {}, {}
+for d in args:
+    if not os.path.isdir(d):
+        sys.exit(f"valve_wss_sides.py: no directory {d}")
+    for x in glob.glob(os.path.join(d, "*hemo*.xdmf")):
+        text = open(x).read()
+        for name, t, h5, grp in re.findall(
+                r'<Grid Name="' + surface + r'_(\d+)"><Time Value="([^"]+)"/>.*?>([^<>:]+\.h5):/(' + surface +
+                r'/step_\d+)/points<', text, re.S):
+            samples[float(t)] = (os.path.join(d, h5), grp)
+    for h in glob.glob(os.path.join(d, "*hemo*.h5")):
+        with h5py.File(h, "r") as f:
+            if surface not in f:
+                continue
+            for w in f[surface]:
+                if w.startswith("window_") and "interval" in f[surface][w]:
+                    t0, t1 = f[surface][w]["interval"][:]
+                    windows[(round(t0, 9), round(t1, 9))] = (h, surface + "/" + w)
+if not samples and not windows:
+    sys.exit(f"valve_wss_sides.py: no wall-shear output of surface '{surface}' in {args}")
+
+any_h5 = next(iter(samples.values()))[0] if samples else next(iter(windows.values()))[0]
+with h5py.File(any_h5, "r") as f:
+    ref = f[surface]["reference_points"][:].reshape(-1, 3, 3)
+c = ref.mean(axis=1)
+n = np.cross(ref[:, 1] - ref[:, 0], ref[:, 2] - ref[:, 0])
+area0 = 0.5 * np.linalg.norm(n, axis=1)
+n /= np.linalg.norm(n, axis=1)[:, None]
+
+# Orient each normal outwards: away from the nearest nearly parallel face across the thickness.
+side = np.zeros(len(c), dtype=int)  # -1 ventricular, +1 aortic, 0 rim
+out = n.copy()
+for i in range(len(c)):
+    d = c - c[i]
+    dist = np.linalg.norm(d, axis=1)
+    across = (dist < 1.5e-3) & (np.abs(n @ n[i]) > 0.8) & (np.abs(d @ n[i]) > 0.5 * dist) & (dist > 0)
+    if not across.any():
+        continue
+    j = np.flatnonzero(across)[np.argmin(dist[across])]
+    if d[j] @ n[i] > 0:
+        out[i] = -n[i]
+    r = np.array([c[i, 0], c[i, 1], 0.0])
+    r /= max(np.linalg.norm(r), 1e-12)
+    side[i] = -1 if out[i, 2] + out[i] @ r < 0 else 1
+rim = side == 0
+# Distance from the free edge: the rim faces whose centroid is not at the root wall's radius.
+radius = np.hypot(c[:, 0], c[:, 1])
+edge = rim & (radius < radius.max() - 1e-3)
+d_edge = np.full(len(c), np.inf)
+if edge.any():
+    for i in range(len(c)):
+        d_edge[i] = np.min(np.linalg.norm(c[edge] - c[i], axis=1))
+
+
+def split(values, weights):
+    rows = []
+    for label, m in (("ventricular", side == -1), ("aortic", side == 1), ("rims", rim)):
+        if not m.any():
+            continue
+        mean = np.sum(values[m] * weights[m]) / np.sum(weights[m])
+        rows.append((label, m.sum(), 1e4 * np.sum(weights[m]), mean, np.percentile(values[m], 95), values[m].max()))
+    return rows
+
+
+print(f"faces: {len(c)} ({(side == -1).sum()} ventricular, {(side == 1).sum()} aortic, {rim.sum()} rims)\n")
+for t in times:
+    if not samples:
+        break
+    tk = min(samples, key=lambda s: abs(s - t))
+    h5, grp = samples[tk]
+    with h5py.File(h5, "r") as f:
+        mag = f[grp]["wss_magnitude"][:]
+        pts = f[grp]["points"][:].reshape(-1, 3, 3)
+    area = 0.5 * np.linalg.norm(np.cross(pts[:, 1] - pts[:, 0], pts[:, 2] - pts[:, 0]), axis=1)
+    print(f"### |tau_w| at t = {tk * 1e3:.1f} ms (asked {t * 1e3:.1f} ms; {os.path.basename(h5)})\n")
+    print("| side | faces | area [cm²] | area mean [Pa] | 95th pct [Pa] | max [Pa] |\n|---|---|---|---|---|---|")
+    for r in split(mag, area):
+        print(f"| {r[0]} | {r[1]} | {r[2]:.2f} | {r[3]:.3f} | {r[4]:.3f} | {r[5]:.3f} |")
+    print()
+
+indices = [((t0, t1), h5, grp) for (t0, t1), (h5, grp) in sorted(windows.items())]
+if sampled:
+    ts = sorted(t for t in samples if sampled[0] - 1e-9 <= t <= sampled[1] + 1e-9)
+    if len(ts) < 2:
+        sys.exit(f"valve_wss_sides.py: fewer than two outputs between {sampled[0]} and {sampled[1]} s")
+    vec, mag = 0.0, 0.0
+    for k, t in enumerate(ts):
+        w = 0.5 * ((ts[min(k + 1, len(ts) - 1)] - t) + (t - ts[max(k - 1, 0)]))
+        with h5py.File(samples[t][0], "r") as f:
+            tau = f[samples[t][1]]["wss"][:]
+        vec = vec + w * tau
+        mag = mag + w * np.linalg.norm(tau, axis=1)
+    T = ts[-1] - ts[0]
+    tawss, mean = np.linalg.norm(vec, axis=1) / T, mag / T
+    osi = np.clip(0.5 * (1 - tawss / np.maximum(mean, 1e-300)), 0, 0.5)
+    indices.append(((ts[0], ts[-1]), None, {"tawss": tawss, "wss_magnitude_mean": mean, "osi": osi,
+                                             "samples": len(ts)}))
+for (t0, t1), h5, grp in indices:
+    if h5 is None:
+        q = grp
+        print(f"### sampled {t0:.4f}-{t1:.4f} s ({q['samples']} instantaneous outputs)\n")
+    else:
+        with h5py.File(h5, "r") as f:
+            q = {k: f[grp][k][:] for k in ("tawss", "wss_magnitude_mean", "osi")}
+        print(f"### window {t0:.4f}-{t1:.4f} s ({os.path.basename(h5)})\n")
+    print("| side | TAWSS area mean [Pa] | mean \\|tau_w\\| [Pa] | OSI area mean | OSI 95th pct |\n|---|---|---|---|---|")
+    for label, m in (("ventricular", side == -1), ("aortic", side == 1), ("rims", rim)):
+        w = area0[m]
+        print(f"| {label} | {np.sum(q['tawss'][m] * w) / w.sum():.3f} | "
+              f"{np.sum(q['wss_magnitude_mean'][m] * w) / w.sum():.3f} | {np.sum(q['osi'][m] * w) / w.sum():.3f} | "
+              f"{np.percentile(q['osi'][m], 95):.3f} |")
+    print("\n| distance from the free edge [mm] | faces | OSI area mean | TAWSS area mean [Pa] |\n|---|---|---|---|")
+    for lo, hi in ((0, 1), (1, 3), (3, 6), (6, 10), (10, np.inf)):
+        m = (d_edge >= lo * 1e-3) & (d_edge < hi * 1e-3)
+        if m.any():
+            w = area0[m]
+            print(f"| {lo}-{hi} | {m.sum()} | {np.sum(q['osi'][m] * w) / w.sum():.3f} | "
+                  f"{np.sum(q['tawss'][m] * w) / w.sum():.3f} |")
+    print()
