@@ -116,10 +116,13 @@ void Ale::check(const char *when, long step) {
   char msg[500];
   if (remesh && (hard || soft)) {
     std::snprintf(msg, sizeof msg,
-                  "mesh %s step %ld: worst skewness %.3f (degraded %.3f, -ale_remesh_skewness "
-                  "%.3g), smallest volume ratio %.3g (-ale_remesh_min_volume_ratio %.3g)",
+                  "mesh %s step %ld: worst skewness %.3f (degraded %.3f at %.4g,%.4g,%.4g m, "
+                  "-ale_remesh_skewness %.3g), smallest volume ratio %.3g at %.4g,%.4g,%.4g m "
+                  "(-ale_remesh_min_volume_ratio %.3g)",
                   when, step, quality_.max_skewness, quality_.max_degraded_skewness,
-                  remesh_skewness_, quality_.min_jacobian, remesh_min_ratio_);
+                  quality_.where_degraded[0], quality_.where_degraded[1],
+                  quality_.where_degraded[2], remesh_skewness_, quality_.min_jacobian,
+                  quality_.where[0], quality_.where[1], quality_.where[2], remesh_min_ratio_);
     throw RemeshNeeded(msg);
   }
   if (hard) {

@@ -90,7 +90,7 @@ static double signed_volume(const double Q[4][3]) {
 
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
                          const std::vector<double> &X, const std::vector<double> *skewness0) {
-  double jmin = 1e300, smax = 0, sdeg = 0, at[3] = {0, 0, 0};
+  double jmin = 1e300, smax = 0, sdeg = 0, at[3] = {0, 0, 0}, atdeg[3] = {0, 0, 0};
   for (size_t i = 0; i < cells.size(); ++i) {
     const PetscInt k = cells[i];
     double P[4][3], P0[4][3];
@@ -105,7 +105,11 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
     const double s = Vs / V0 <= 0 ? 1.0 : tet_skewness(P);
     smax = std::max(smax, s);
     // Degraded: its quality 1 - s at most half of what it was in the reference mesh.
-    if (skewness0 && 1 - s <= 0.5 * (1 - (*skewness0)[i])) sdeg = std::max(sdeg, s);
+    if (skewness0 && 1 - s <= 0.5 * (1 - (*skewness0)[i]) && s > sdeg) {
+      sdeg = s;
+      for (int d = 0; d < 3; ++d)
+        atdeg[d] = 0.25 * (P[0][d] + P[1][d] + P[2][d] + P[3][d]);
+    }
   }
   MeshQuality q;
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
@@ -119,7 +123,14 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
   std::copy(at, at + 3, q.where);
   MPI_Bcast(q.where, 3, MPI_DOUBLE, least.rank, comm);
   MPI_Allreduce(&smax, &q.max_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
-  MPI_Allreduce(&sdeg, &q.max_degraded_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
+  struct {
+    double value;
+    int rank;
+  } mydeg = {sdeg, mine.rank}, worst;
+  MPI_Allreduce(&mydeg, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
+  q.max_degraded_skewness = worst.value;
+  std::copy(atdeg, atdeg + 3, q.where_degraded);
+  MPI_Bcast(q.where_degraded, 3, MPI_DOUBLE, worst.rank, comm);
   return q;
 }
 

@@ -48,6 +48,7 @@ struct MeshQuality {
   // reference mesh (given its per-cell skewness): what remeshing can cure.  A mesh generator's
   // slivers that stay as bad as they were do not count.
   double max_degraded_skewness = 0;
+  double where_degraded[3] = {0, 0, 0}; // centre of the cell of max_degraded_skewness
   double where[3] = {0, 0, 0}; // centre of the cell with the smallest volume ratio (the one the
                                // motion crushes most)
 };
