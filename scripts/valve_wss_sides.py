@@ -63,50 +63,62 @@ for d in args:
 if not samples and not windows:
     sys.exit(f"valve_wss_sides.py: no wall-shear output of surface '{surface}' in {args}")
 
-any_h5 = next(iter(samples.values()))[0] if samples else next(iter(windows.values()))[0]
-with h5py.File(any_h5, "r") as f:
-    ref = f[surface]["reference_points"][:].reshape(-1, 3, 3)
-c = ref.mean(axis=1)
-n = np.cross(ref[:, 1] - ref[:, 0], ref[:, 2] - ref[:, 0])
-area0 = 0.5 * np.linalg.norm(n, axis=1)
-n /= np.linalg.norm(n, axis=1)[:, None]
 
-# Orient each normal outwards: away from the nearest nearly parallel face across the thickness.
-side = np.zeros(len(c), dtype=int)  # -1 ventricular, +1 aortic, 0 rim
-out = n.copy()
-for i in range(len(c)):
-    d = c - c[i]
-    dist = np.linalg.norm(d, axis=1)
-    across = (dist < 1.5e-3) & (np.abs(n @ n[i]) > 0.8) & (np.abs(d @ n[i]) > 0.5 * dist) & (dist > 0)
-    if not across.any():
-        continue
-    j = np.flatnonzero(across)[np.argmin(dist[across])]
-    if d[j] @ n[i] > 0:
-        out[i] = -n[i]
-    r = np.array([c[i, 0], c[i, 1], 0.0])
-    r /= max(np.linalg.norm(r), 1e-12)
-    side[i] = -1 if out[i, 2] + out[i] @ r < 0 else 1
-rim = side == 0
-# Distance from the free edge: the rim faces whose centroid is not at the root wall's radius.
-radius = np.hypot(c[:, 0], c[:, 1])
-edge = rim & (radius < radius.max() - 1e-3)
-d_edge = np.full(len(c), np.inf)
-if edge.any():
+
+def classify(P):
+    """Sides of faces with vertices P (nf, 3, 3): outward normal away from the nearly parallel face
+    across the thickness; ventricular where n_z + n_r < 0 (true of the nearly closed reference
+    shape and of the open leaflets alike)."""
+    c = P.mean(axis=1)
+    n = np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0])
+    area = 0.5 * np.linalg.norm(n, axis=1)
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    side = np.zeros(len(c), dtype=int)  # -1 ventricular, +1 aortic, 0 rim
+    partner = np.full(len(c), -1)
     for i in range(len(c)):
-        d_edge[i] = np.min(np.linalg.norm(c[edge] - c[i], axis=1))
-
-
-def split(values, weights):
-    rows = []
-    for label, m in (("ventricular", side == -1), ("aortic", side == 1), ("rims", rim)):
-        if not m.any():
+        d = c - c[i]
+        dist = np.linalg.norm(d, axis=1)
+        across = (dist < 1.5e-3) & (np.abs(n @ n[i]) > 0.8) & (np.abs(d @ n[i]) > 0.5 * dist) & (dist > 0)
+        if not across.any():
             continue
-        mean = np.sum(values[m] * weights[m]) / np.sum(weights[m])
-        rows.append((label, m.sum(), 1e4 * np.sum(weights[m]), mean, np.percentile(values[m], 95), values[m].max()))
+        j = partner[i] = np.flatnonzero(across)[np.argmin(dist[across])]
+        out = -n[i] if d[j] @ n[i] > 0 else n[i]
+        r = np.array([c[i, 0], c[i, 1], 0.0])
+        r /= max(np.linalg.norm(r), 1e-12)
+        side[i] = -1 if out[2] + out @ r < 0 else 1
+    rim = side == 0
+    sided = np.flatnonzero(side != 0)
+    # Check of the split: a face's partner across the thickness should be on the other side.
+    opposite = int(np.sum(side[partner[sided]] == -side[sided]))
+    # Distance from the free edge: the rim faces whose centroid is not at the root wall's radius.
+    radius = np.hypot(c[:, 0], c[:, 1])
+    edge = rim & (radius < radius.max() - 1e-3)
+    d_edge = np.full(len(c), np.inf)
+    if edge.any():
+        for i in range(len(c)):
+            d_edge[i] = np.min(np.linalg.norm(c[edge] - c[i], axis=1))
+    return {"side": side, "rim": rim, "area": area, "d_edge": d_edge, "c": c,
+            "check": f"{(side == -1).sum()} ventricular, {(side == 1).sum()} aortic, {rim.sum()} rim faces; "
+                     f"partner across the thickness on the other side: {opposite} of {len(sided)}"}
+
+
+def material(h5):
+    """The faces' material vertices (identity across remeshes), or None for older files."""
+    with h5py.File(h5, "r") as f:
+        g = f[surface]
+        return g["material_points"][:].reshape(-1, 3, 3) if "material_points" in g else None
+
+
+def split(geo, values, weights):
+    rows = []
+    for label, m in (("ventricular", geo["side"] == -1), ("aortic", geo["side"] == 1), ("rims", geo["rim"])):
+        if m.any():
+            mean = np.sum(values[m] * weights[m]) / np.sum(weights[m])
+            rows.append((label, m.sum(), 1e4 * np.sum(weights[m]), mean, np.percentile(values[m], 95),
+                         values[m].max()))
     return rows
 
 
-print(f"faces: {len(c)} ({(side == -1).sum()} ventricular, {(side == 1).sum()} aortic, {rim.sum()} rims)\n")
 for t in times:
     if not samples:
         break
@@ -115,39 +127,70 @@ for t in times:
     with h5py.File(h5, "r") as f:
         mag = f[grp]["wss_magnitude"][:]
         pts = f[grp]["points"][:].reshape(-1, 3, 3)
+    M = material(h5)
+    geo = classify(M if M is not None else pts)
     area = 0.5 * np.linalg.norm(np.cross(pts[:, 1] - pts[:, 0], pts[:, 2] - pts[:, 0]), axis=1)
-    print(f"### |tau_w| at t = {tk * 1e3:.1f} ms (asked {t * 1e3:.1f} ms; {os.path.basename(h5)})\n")
+    print(f"### |tau_w| at t = {tk * 1e3:.1f} ms (asked {t * 1e3:.1f} ms; {os.path.basename(h5)}; sides from the "
+          f"{'material' if M is not None else 'current'} geometry: {geo['check']})\n")
     print("| side | faces | area [cm²] | area mean [Pa] | 95th pct [Pa] | max [Pa] |\n|---|---|---|---|---|---|")
-    for r in split(mag, area):
+    for r in split(geo, mag, area):
         print(f"| {r[0]} | {r[1]} | {r[2]:.2f} | {r[3]:.3f} | {r[4]:.3f} | {r[5]:.3f} |")
     print()
 
-indices = [((t0, t1), h5, grp) for (t0, t1), (h5, grp) in sorted(windows.items())]
+
+def canonical(files):
+    """Face order of each file mapped to the first file's, by material centroid; None if the files'
+    faces cannot be matched (older files without material_points, from more than one mesh)."""
+    mats = {h: material(h) for h in files}
+    if any(m is None for m in mats.values()):
+        return None
+    key = lambda m: [tuple(np.round(x, 8)) for x in m.mean(axis=1)]
+    first = {k: i for i, k in enumerate(key(mats[files[0]]))}
+    out = {}
+    for h in files:
+        idx = np.array([first.get(k, -1) for k in key(mats[h])])
+        if (idx < 0).any():
+            return None
+        out[h] = np.argsort(idx)  # values[out[h]] is in the first file's order
+    return out
+
+
+indices = []
+for (t0, t1), (h5, grp) in sorted(windows.items()):
+    with h5py.File(h5, "r") as f:
+        q = {k: f[grp][k][:] for k in ("tawss", "wss_magnitude_mean", "osi")}
+        P = f[surface]["reference_points"][:].reshape(-1, 3, 3)
+    M = material(h5)
+    indices.append(((t0, t1), f"window ({os.path.basename(h5)})", classify(M if M is not None else P), q))
 if sampled:
     ts = sorted(t for t in samples if sampled[0] - 1e-9 <= t <= sampled[1] + 1e-9)
     if len(ts) < 2:
         sys.exit(f"valve_wss_sides.py: fewer than two outputs between {sampled[0]} and {sampled[1]} s")
+    files = list(dict.fromkeys(samples[t][0] for t in ts))
+    order = canonical(files) if len(files) > 1 else {files[0]: slice(None)}
+    if order is None:
+        sys.exit("valve_wss_sides.py: --sampled over several mesh pieces needs the faces' material_points "
+                 "(written by runs from 2026-12-02 on); these files order their faces by each new mesh's "
+                 "reference and cannot be matched")
     vec, mag = 0.0, 0.0
     for k, t in enumerate(ts):
         w = 0.5 * ((ts[min(k + 1, len(ts) - 1)] - t) + (t - ts[max(k - 1, 0)]))
         with h5py.File(samples[t][0], "r") as f:
-            tau = f[samples[t][1]]["wss"][:]
+            tau = f[samples[t][1]]["wss"][:][order[samples[t][0]]]
         vec = vec + w * tau
         mag = mag + w * np.linalg.norm(tau, axis=1)
     T = ts[-1] - ts[0]
     tawss, mean = np.linalg.norm(vec, axis=1) / T, mag / T
     osi = np.clip(0.5 * (1 - tawss / np.maximum(mean, 1e-300)), 0, 0.5)
-    indices.append(((ts[0], ts[-1]), None, {"tawss": tawss, "wss_magnitude_mean": mean, "osi": osi,
-                                             "samples": len(ts)}))
-for (t0, t1), h5, grp in indices:
-    if h5 is None:
-        q = grp
-        print(f"### sampled {t0:.4f}-{t1:.4f} s ({q['samples']} instantaneous outputs)\n")
-    else:
-        with h5py.File(h5, "r") as f:
-            q = {k: f[grp][k][:] for k in ("tawss", "wss_magnitude_mean", "osi")}
-        print(f"### window {t0:.4f}-{t1:.4f} s ({os.path.basename(h5)})\n")
+    M = material(files[0])
+    with h5py.File(files[0], "r") as f:
+        P = f[surface]["reference_points"][:].reshape(-1, 3, 3)
+    indices.append(((ts[0], ts[-1]), f"sampled, {len(ts)} instantaneous outputs",
+                    classify(M if M is not None else P), {"tawss": tawss, "wss_magnitude_mean": mean, "osi": osi}))
+for (t0, t1), what, geo, q in indices:
+    print(f"### TAWSS and OSI {t0:.4f}-{t1:.4f} s ({what}; {geo['check']})\n")
     print("| side | TAWSS area mean [Pa] | mean \\|tau_w\\| [Pa] | OSI area mean | OSI 95th pct |\n|---|---|---|---|---|")
+    side, rim, area0, d_edge = geo["side"], geo["rim"], geo["area"], geo["d_edge"]
     for label, m in (("ventricular", side == -1), ("aortic", side == 1), ("rims", rim)):
         w = area0[m]
         print(f"| {label} | {np.sum(q['tawss'][m] * w) / w.sum():.3f} | "

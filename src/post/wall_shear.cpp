@@ -10,7 +10,7 @@ namespace fsi {
 
 void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
                       const ExactFlow *exact, const std::string &out_dir, double t_end,
-                      const std::string &base) {
+                      const std::string &base, const std::vector<double> &material_X) {
   const auto names = opt::list("hemo_surfaces");
   window_ = opt::nonnegative("hemo_window", 0.0);
   start_ = opt::nonnegative("hemo_start", 0.0);
@@ -43,13 +43,16 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
     s.faces = space.boundary_faces(mesh, n, &in_fluid);
     const size_t nf = s.faces.size();
     s.key.resize(3 * nf);
-    std::vector<double> pts(9 * nf);
+    std::vector<double> pts(18 * nf); // reference, then material points
+    const std::vector<double> &XM = material_X.size() == space.X.size() ? material_X : space.X;
     for (size_t i = 0; i < nf; ++i) {
       const int *v = s.faces[i].vertex;
       face_key(&space.X[3 * v[0]], &space.X[3 * v[1]], &space.X[3 * v[2]], &s.key[3 * i]);
       for (int j = 0; j < 3; ++j)
-        for (int d = 0; d < 3; ++d)
-          pts[9 * i + 3 * j + d] = space.X[3 * v[j] + d];
+        for (int d = 0; d < 3; ++d) {
+          pts[18 * i + 3 * j + d] = space.X[3 * v[j] + d];
+          pts[18 * i + 9 + 3 * j + d] = XM[3 * v[j] + d];
+        }
     }
     s.tau.assign(3 * nf, 0.0);
     s.area.assign(nf, 0.0);
@@ -58,10 +61,17 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
     MPI_Allreduce(&nl, &s.n_global, 1, MPI_LONG, MPI_SUM, comm_);
     if (s.n_global == 0)
       throw InputError("-hemo_surfaces: surface '" + n + "' has no face on the fluid");
-    KeyedItems all = gather_sorted(comm_, s.key, pts, 3, 9);
+    KeyedItems all = gather_sorted(comm_, s.key, pts, 3, 18);
     collective_output(comm_, [&]() {
       if (!file_) return;
-      file_->write("/" + n + "/reference_points", all.values, 3);
+      std::vector<double> ref(9 * s.n_global), mat(9 * s.n_global);
+      for (long i = 0; i < s.n_global; ++i)
+        for (int m = 0; m < 9; ++m) {
+          ref[9 * i + m] = all.values[18 * i + m];
+          mat[9 * i + m] = all.values[18 * i + 9 + m];
+        }
+      file_->write("/" + n + "/reference_points", ref, 3);
+      file_->write("/" + n + "/material_points", mat, 3);
       std::vector<long> tri(3 * s.n_global);
       for (long i = 0; i < 3 * s.n_global; ++i)
         tri[i] = i;

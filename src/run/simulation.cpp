@@ -154,7 +154,8 @@ void Simulation::build_physics(const Mesh &mesh) {
   mon_.setup(mesh, space_, fluid_, exact_.get());
   smon_.setup(space_, solid_, exact_solid_.get());
   valve_.setup(space_, fluid_, solid_);
-  wss_.setup(mesh, space_, fluid_, exact_.get(), out_.dir, scene_.time.t_end, out_.hemo);
+  wss_.setup(mesh, space_, fluid_, exact_.get(), out_.dir, scene_.time.t_end, out_.hemo,
+             material_X_);
   if (out_.fields_every > 0) {
     FieldSet set;
     set.pressure = fluid_ != nullptr;

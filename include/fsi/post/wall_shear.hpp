@@ -10,7 +10,9 @@
 //   osi        = 1/2 (1 - tawss / wss_magnitude_mean)  in [0, 1/2]
 //   rrt        = 1 / ((1 - 2 osi) wss_magnitude_mean) = 1 / tawss   [1/Pa]
 // Files: hemo.h5 (+ hemo.xdmf at the end; hemo_restart.* in a restarted run): per surface the faces
-// sorted by reference centroid (partition independent), instantaneous wss with the fields, and each
+// sorted by reference centroid (partition independent; the reference is the current mesh's, so
+// the order changes with a remesh: material_points, the vertices' material reference, identify
+// a face across files), instantaneous wss with the fields, and each
 // window's indices at its end.  monitor.csv gets <s>_wss_mean and <s>_wss_max (area mean and max of
 // |tau_w|) and, with an exact flow, <s>_wss_err_l2 and <s>_wss_exact_l2.
 #pragma once
@@ -29,8 +31,11 @@ class Simulation;
 
 class WallShear {
 public:
+  // material_X: the solid's material reference per vertex (the faces' identity across remeshes,
+  // written as <surface>/material_points; the ALE reference changes with every new mesh).
   void setup(const Mesh &mesh, const Space &space, const FluidModule *fluid, const ExactFlow *exact,
-             const std::string &out_dir, double t_end, const std::string &base);
+             const std::string &out_dir, double t_end, const std::string &base,
+             const std::vector<double> &material_X);
   bool active() const { return !surf_.empty(); }
   // After each accepted step of length dt: instantaneous tau_w, accumulators, window closing.
   void update(const Simulation &pb, double dt);
