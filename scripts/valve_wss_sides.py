@@ -11,10 +11,12 @@ way from the instantaneous outputs between T0 and T1 (every -out_fields_every st
 weights): an estimate for a stretch that no closed window covers (the run's own windows
 integrate every step).
 
-Sides, from the reference geometry alone (the faces of hemo.h5 are stored with their reference
-vertices): a face's outward normal points away from the face found across the leaflet's thickness
-(the nearest nearly parallel face within 1.5 mm); the ventricular side is the one whose outward
-normal points upstream or towards the axis in the nearly closed reference shape, n_z + n_r < 0."""
+Sides, per output file (a remesh writes its faces in its new reference's order): on the faces'
+material geometry (material_points, written since 2026-12-02) or else the sample's current one,
+a face's outward normal points away from the nearest nearly parallel face across the leaflet's
+thickness (within 1.5 mm); the ventricular side is the one whose outward normal points upstream
+or towards the axis, n_z + n_r < 0 (true of the nearly closed and of the open leaflets).  Every
+split prints how many faces have their partner across the thickness on the other side."""
 import glob
 import os
 import re
