@@ -3,6 +3,7 @@
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace fsi {
 namespace {
@@ -152,7 +153,12 @@ struct SplitLaw : Material {
   Exponential ex;
   SplitLaw(std::string k, double a, double b, double c, Exponential e)
       : kind(std::move(k)), c10(a), c01(b), kappa(c), ex(e) {}
-  std::string name() const override { return kind; }
+  std::string name() const override {
+    if (ex.e1 <= 0) return kind;
+    char s[120];
+    std::snprintf(s, sizeof s, "%s + exponential, c1 %g Pa, c2 %g", kind.c_str(), ex.e1, ex.e2);
+    return s;
+  }
   double energy(const double F[3][3]) const override {
     return mooney_rivlin_energy(&F[0][0], c10, c01, kappa, ex);
   }
