@@ -108,8 +108,8 @@ S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa, Expon
   cauchy_green(F, C, I1, I2);
   S I1b = power(J, -2.0 / 3.0) * I1, I2b = power(J, -4.0 / 3.0) * I2;
   S Jm1 = J + (-1.0), x = I1b + (-3.0);
-  return c10 * x + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1) +
-         (0.5 * ex.e1) * (expo(ex.e2 * (x * x)) + (-1.0));
+  S w = c10 * x + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1);
+  return ex.e1 > 0 ? w + (0.5 * ex.e1) * (expo(ex.e2 * (x * x)) + (-1.0)) : w;
 }
 
 // Its first Piola-Kirchhoff stress in closed form, generic in the scalar (a dual number gives the
@@ -135,7 +135,7 @@ void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, E
   cauchy_green(F, C, I1, I2);
   S Jinv = power(J, -1.0), a = power(J, -2.0 / 3.0);
   S a2 = a * a, x = a * I1 + (-3.0);
-  S c10 = (ex.e1 * ex.e2) * (x * expo(ex.e2 * (x * x))) + c10_;
+  S c10 = ex.e1 > 0 ? (ex.e1 * ex.e2) * (x * expo(ex.e2 * (x * x))) + c10_ : 0.0 * x + c10_;
   S s1 = 2.0 * (c10 * a), s2 = (2 * c01) * a2;
   // coefficient of cof F: -2/3 c10 a I1 / J - 4/3 c01 a^2 I2 / J + kappa (J - 1)
   S kc =
