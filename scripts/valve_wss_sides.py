@@ -41,7 +41,7 @@ if "--surface" in args:
     surface = args[i + 1]
     del args[i:i + 2]
 if not args:
-    sys.exit("usage: valve_wss_sides.py DIR [DIR ...] [--times T1,T2] [--surface NAME]")
+    sys.exit("usage: valve_wss_sides.py DIR [DIR ...] [--times T1,T2] [--surface NAME] [--sampled T0,T1]")
 
 # Every instantaneous output: time -> (h5 file, group); every closed window: (t0, t1) -> group.
 samples, windows = {}, {}
@@ -50,7 +50,7 @@ for d in args:
         sys.exit(f"valve_wss_sides.py: no directory {d}")
     for x in glob.glob(os.path.join(d, "*hemo*.xdmf")):
         text = open(x).read()
-        for name, t, h5, grp in re.findall(
+        for _, t, h5, grp in re.findall(
                 r'<Grid Name="' + surface + r'_(\d+)"><Time Value="([^"]+)"/>.*?>([^<>:]+\.h5):/(' + surface +
                 r'/step_\d+)/points<', text, re.S):
             samples[float(t)] = (os.path.join(d, h5), grp)
@@ -64,7 +64,6 @@ for d in args:
                     windows[(round(t0, 9), round(t1, 9))] = (h, surface + "/" + w)
 if not samples and not windows:
     sys.exit(f"valve_wss_sides.py: no wall-shear output of surface '{surface}' in {args}")
-
 
 
 def classify(P):

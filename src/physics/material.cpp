@@ -257,10 +257,14 @@ void check_modulus(const std::string &name, double v) {
 
 std::unique_ptr<Material> make_material(const std::string &kind, double p1, double p2, double p3,
                                         double e1, double e2) {
-  if (!(e1 >= 0) || !(e2 >= 0) || (e1 > 0) != (e2 > 0))
-    throw InputError("options -solid_exp_c1 [Pa] and -solid_exp_c2 [-] must both be positive "
-                     "(or both 0: no exponential term), got " +
-                     std::to_string(e1) + ", " + std::to_string(e2));
+  if (!(e1 >= 0) || !(e2 >= 0) || (e1 > 0) != (e2 > 0)) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "options -solid_exp_c1 [Pa] and -solid_exp_c2 [-] must both be positive (or "
+                  "both 0: no exponential term), got %g and %g",
+                  e1, e2);
+    throw InputError(msg);
+  }
   if (e1 > 0 && (kind == "linear" || kind == "svk"))
     throw InputError("options -solid_exp_c1/-solid_exp_c2 need -solid_material neo_hookean or "
                      "mooney_rivlin, not " +

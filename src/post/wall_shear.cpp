@@ -44,14 +44,13 @@ void WallShear::setup(const Mesh &mesh, const Space &space, const FluidModule *f
     const size_t nf = s.faces.size();
     s.key.resize(3 * nf);
     std::vector<double> pts(18 * nf); // reference, then material points
-    const std::vector<double> &XM = material_X.size() == space.X.size() ? material_X : space.X;
     for (size_t i = 0; i < nf; ++i) {
       const int *v = s.faces[i].vertex;
       face_key(&space.X[3 * v[0]], &space.X[3 * v[1]], &space.X[3 * v[2]], &s.key[3 * i]);
       for (int j = 0; j < 3; ++j)
         for (int d = 0; d < 3; ++d) {
           pts[18 * i + 3 * j + d] = space.X[3 * v[j] + d];
-          pts[18 * i + 9 + 3 * j + d] = XM[3 * v[j] + d];
+          pts[18 * i + 9 + 3 * j + d] = material_X[3 * v[j] + d];
         }
     }
     s.tau.assign(3 * nf, 0.0);
