@@ -19,6 +19,8 @@
 //   hbase    element size along the leaflets' attachment to the root (default: h, no band),
 //            where the opening leaflet bends most: at h = 1.5 mm the thin elements there
 //            invert when the valve is half open; hbasew the width of that band (default 2 mm)
+//   hcenter  element size within hcenterw of the axis from the annulus to the commissures
+//            (default: h, no refinement), where the three free edges meet when the valve closes
 // Leaflet k (k = 0, 1, 2, centre angle 90 + 120 k degrees) is the shell of thickness t about an
 // ellipsoid (semi-axes rho_l, rho_l, stretch rho_l) centred on the wall at the commissure
 // height, cut to its own 120-degree sector (less gap/2 from each dividing plane), to the lower
@@ -156,7 +158,8 @@ Field[2].SizeMin = hleaf;
 Field[2].SizeMax = hfar;
 Field[2].DistMin = 0.1 * hgrow;
 Field[2].DistMax = hgrow;
-Background Field = 2;
+bg = 2;
+Background Field = bg;
 If (Exists(hbase))
   Field[3] = Distance;
   Field[3].SurfacesList = {attach()};
@@ -169,7 +172,24 @@ If (Exists(hbase))
   Field[4].DistMax = 2 * hbasew;
   Field[5] = Min;
   Field[5].FieldsList = {2, 4};
-  Background Field = 5;
+  bg = 5;
+  Background Field = bg;
+EndIf
+If (Exists(hcenter))
+  If (!Exists(hcenterw)) hcenterw = 0.003; EndIf
+  Field[6] = Box;
+  Field[6].VIn = Min(hcenter, hleaf);
+  Field[6].VOut = hfar;
+  Field[6].XMin = -hcenterw;
+  Field[6].XMax = hcenterw;
+  Field[6].YMin = -hcenterw;
+  Field[6].YMax = hcenterw;
+  Field[6].ZMin = 0;
+  Field[6].ZMax = zc;
+  Field[6].Thickness = hcenterw;
+  Field[7] = Min;
+  Field[7].FieldsList = {bg, 6};
+  Background Field = 7;
 EndIf
 Mesh.CharacteristicLengthExtendFromBoundary = 0;
 Mesh.CharacteristicLengthFromPoints = 0;

@@ -1,7 +1,8 @@
 // The contact gap: point-to-triangle distance against a brute-force closest point, and its
 // gradient and Hessian (Jet automatic differentiation) against central differences, in every
 // region of the closest point (face, 3 edges, 3 corners); plus the contact pressure ramp
-// (continuous, slope = its derivative).  Bounds: relative 1e-6 for derivatives.
+// (continuous, slope = its derivative) and the axis rod's distance with its derivatives.  Bounds:
+// relative 1e-6 for derivatives.
 #include "fsi/common.hpp"
 #include "fsi/physics/contact.hpp"
 #include "fsi/physics/contact_geometry.hpp"
@@ -97,5 +98,49 @@ int main() {
                                     p.penalty);
   }
   check(worst_s < 1e-6, "contact pressure slope = its derivative", worst_s);
+
+  // The axis rod's distance: a tilted line through an off-origin point, against the distance
+  // from the closest point found by minimising over the line, and its derivatives against
+  // central differences.
+  AxisLine ax;
+  const double e[3] = {0.3, -0.5, 0.8}, en = std::sqrt(0.09 + 0.25 + 0.64);
+  for (int i = 0; i < 3; ++i) {
+    ax.point[i] = 0.1 * (i + 1);
+    ax.dir[i] = e[i] / en;
+  }
+  double worst_ad = 0, worst_ag = 0, worst_ah = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    double x[3];
+    for (double &v : x)
+      v = u(rng);
+    double g[3], H[3][3];
+    const double r = ax.distance(x, g, H);
+    double s = 0, q2 = 0; // closest point: the projection on the line
+    for (int i = 0; i < 3; ++i)
+      s += (x[i] - ax.point[i]) * ax.dir[i];
+    for (int i = 0; i < 3; ++i)
+      q2 += std::pow(x[i] - ax.point[i] - s * ax.dir[i], 2);
+    double far = 1e300; // and no point of the line is closer (samples around it)
+    for (int k = -50; k <= 50; ++k) {
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i)
+        d2 += std::pow(x[i] - ax.point[i] - (s + 1e-2 * k) * ax.dir[i], 2);
+      far = std::min(far, std::sqrt(d2));
+    }
+    worst_ad = std::max({worst_ad, std::fabs(r - std::sqrt(q2)), std::sqrt(q2) - far});
+    const double h = 1e-6;
+    for (int j = 0; j < 3; ++j) {
+      double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]}, gp[3], gm[3];
+      xp[j] += h;
+      xm[j] -= h;
+      const double rp = ax.distance(xp, gp), rm = ax.distance(xm, gm);
+      worst_ag = std::max(worst_ag, std::fabs((rp - rm) / (2 * h) - g[j]));
+      for (int i = 0; i < 3; ++i)
+        worst_ah = std::max(worst_ah, std::fabs((gp[i] - gm[i]) / (2 * h) - H[i][j]));
+    }
+  }
+  check(worst_ad < 1e-12, "axis distance = distance to the line's closest point", worst_ad);
+  check(worst_ag < 1e-6, "axis distance gradient = central differences", worst_ag);
+  check(worst_ah < 1e-5, "axis distance Hessian = central differences", worst_ah);
   return failures ? 1 : 0;
 }

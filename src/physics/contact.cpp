@@ -18,6 +18,22 @@ ContactParams ContactParams::from_options() {
   p.walls = opt::list("contact_walls");
   p.wall_offset = opt::positive("contact_wall_offset", p.offset);
   p.wall_exclude = opt::positive("contact_wall_exclude", 2 * p.wall_offset);
+  p.axis.radius = opt::nonnegative("contact_axis_radius", 0);
+  if (opt::has("contact_axis")) {
+    const std::vector<double> a = opt::reals("contact_axis");
+    const double n = a.size() == 6 ? std::sqrt(a[3] * a[3] + a[4] * a[4] + a[5] * a[5]) : 0;
+    if (n == 0)
+      throw InputError("option -contact_axis takes a point and a direction, X,Y,Z,EX,EY,EZ (6 "
+                       "numbers, the direction not zero), e.g. 0,0,0,0,0,1");
+    for (int i = 0; i < 3; ++i) {
+      p.axis.point[i] = a[i];
+      p.axis.dir[i] = a[3 + i] / n;
+    }
+  }
+  if (p.axis.on() && p.ramp > p.axis.radius)
+    throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
+                     ") must not exceed -contact_axis_radius (" + std::to_string(p.axis.radius) +
+                     ")");
   if (p.ramp > p.offset)
     throw InputError("option -contact_ramp (" + std::to_string(p.ramp) +
                      ") must not exceed -contact_offset (" + std::to_string(p.offset) + ")");
@@ -67,6 +83,12 @@ std::string ContactModule::name() const {
                   surface_->n_nodes());
     name += s;
   }
+  if (p_.axis.on()) {
+    const double *a = p_.axis.point, *e = p_.axis.dir;
+    std::snprintf(s, sizeof s, "; axis rod radius %g m through (%g, %g, %g) along (%g, %g, %g)",
+                  p_.axis.radius, a[0], a[1], a[2], e[0], e[1], e[2]);
+    name += s;
+  }
   return name;
 }
 
@@ -106,6 +128,24 @@ template <class F> void ContactModule::for_each_active(F &&f) {
                                         d, g, H);
     const int nodes[4] = {pr.node, tr[0], tr[1], tr[2]};
     f(nodes, p_.offset - d, 0.5 * S.area(pr.node), g, H);
+  }
+  if (p_.axis.on()) {
+    const double R = p_.axis.radius;
+    axis_min_distance_ = 1e300;
+    for (int n = 0; n < S.n_nodes(); ++n) {
+      const double r = p_.axis.distance(S.x(n));
+      axis_min_distance_ = std::min(axis_min_distance_, r);
+      if (r >= R || r <= 1e-9 * R) continue;
+      double g[12] = {}, H[12][12] = {}, g3[3], H3[3][3];
+      p_.axis.distance(S.x(n), g3, H3);
+      for (int i = 0; i < 3; ++i) {
+        g[i] = g3[i];
+        for (int j = 0; j < 3; ++j)
+          H[i][j] = H3[i][j];
+      }
+      const int nodes[4] = {n, -2, -2, -2};
+      f(nodes, R - r, S.area(n), g, H); // one way: the whole node area
+    }
   }
   if (!wall_) return;
   wall_min_gap_ = wall_->radius();
@@ -162,8 +202,10 @@ void ContactModule::add_residual(const StepContext &, PetscScalar *F) {
   stats_ = ContactStats{0, 0, 0, stats_.pattern_misses};
   for_each_active([&](const int *nodes, double pen, double w, const double *g, auto &) {
     const double f = w * p_.pressure(pen);
-    if (nodes[1] < 0)
+    if (nodes[1] == -1)
       stats_.wall_pairs++;
+    else if (nodes[1] == -2)
+      stats_.axis_pairs++;
     else
       stats_.active_pairs++;
     stats_.max_penetration = std::max(stats_.max_penetration, pen);
@@ -176,6 +218,7 @@ void ContactModule::add_residual(const StepContext &, PetscScalar *F) {
     }
   });
   stats_.wall_min_gap = wall_min_gap_;
+  stats_.axis_min_distance = axis_min_distance_;
 }
 
 void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {

@@ -142,3 +142,24 @@ void point_triangle_distance_derivatives(const double p[3], const double a[3], c
 }
 
 } // namespace fsi
+
+namespace fsi {
+
+double AxisLine::distance(const double p[3], double g[3], double H[3][3]) const {
+  double q[3], s = 0;
+  for (int i = 0; i < 3; ++i)
+    s += (p[i] - point[i]) * dir[i];
+  for (int i = 0; i < 3; ++i)
+    q[i] = p[i] - point[i] - s * dir[i]; // the component normal to the line
+  const double r = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+  if (!g) return r;
+  for (int i = 0; i < 3; ++i)
+    g[i] = q[i] / r;
+  if (H) // (I - e e^T - n n^T) / r: curvature in the plane normal to the line, across n
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        H[i][j] = ((i == j) - dir[i] * dir[j] - g[i] * g[j]) / r;
+  return r;
+}
+
+} // namespace fsi

@@ -7,8 +7,9 @@
 
 namespace fsi {
 
-GapSealParams GapSealParams::from_options(double offset) {
+GapSealParams GapSealParams::from_options(double offset, const AxisLine &axis) {
   GapSealParams p;
+  p.axis = axis;
   p.resistance = opt::positive("gap_seal_resistance", p.resistance);
   p.gap_closed = opt::positive("gap_seal_gap_closed", 1.25 * offset);
   p.gap_open = opt::positive("gap_seal_gap_open", 2 * offset);
@@ -40,17 +41,24 @@ GapSeal::GapSeal(const Space &space, const std::vector<PetscInt> &fluid_cells,
 
 std::string GapSeal::name() const {
   char s[200];
-  std::snprintf(s, sizeof s, "gap seal (Brinkman %g Pa s/m^2 below a %g-%g m gap)", p_.resistance,
-                p_.gap_closed, p_.gap_open);
+  std::snprintf(s, sizeof s, "gap seal (Brinkman %g Pa s/m^2 below a %g-%g m gap%s)", p_.resistance,
+                p_.gap_closed, p_.gap_open, p_.axis.on() ? ", the axis rod a piece" : "");
   return s;
 }
 
-// Target resistance at point c: from the two nearest pieces of the surface.
+// Search radius around a centroid: a gap can be open at most gap_open wide, and a centroid
+// inside the axis rod sees the rod at -R.
+double GapSeal::reach() const {
+  return p_.gap_open + p_.axis.radius;
+}
+
+// Target resistance at point c: from the two nearest pieces of the surface (the axis rod one).
 double GapSeal::target(const double c[3], std::vector<double> &best) const {
   const ContactSurface &S = *surface_;
-  double d1 = p_.gap_open, d2 = p_.gap_open;
+  double d1 = reach(), d2 = reach();
   int c1 = -1;
-  best.assign(S.n_components(), p_.gap_open);
+  best.assign(S.n_components() + (p_.axis.on() ? 1 : 0), reach());
+  if (p_.axis.on()) best.back() = p_.axis.distance(c) - p_.axis.radius;
   S.near(c, [&](int t) {
     const auto &tr = S.triangle(t);
     TriRegion r;
@@ -65,7 +73,7 @@ double GapSeal::target(const double c[3], std::vector<double> &best) const {
     }
   for (int k = 0; k < (int)best.size(); ++k)
     if (k != c1) d2 = std::min(d2, best[k]);
-  const double g = d1 + d2;
+  const double g = std::max(0.0, d1 + d2);
   double s = (p_.gap_open - g) / (p_.gap_open - p_.gap_closed);
   s = std::clamp(s, 0.0, 1.0);
   return p_.resistance * s * s * (3 - 2 * s);
@@ -73,7 +81,7 @@ double GapSeal::target(const double c[3], std::vector<double> &best) const {
 
 void GapSeal::begin_solve(const StepContext &ctx) {
   surface_->update(ctx);
-  surface_->bin(p_.gap_open);
+  surface_->bin(reach());
   if (ctx.t_n != t_last_) { // a new step: the last one's resistance is the lag's start
     if (t_last_ > -1e300) alpha_prev_ = alpha_;
     t_last_ = ctx.t_n;

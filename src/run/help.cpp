@@ -112,6 +112,10 @@ const std::vector<Section> &sections() {
         {"contact_wall_exclude", "2 wall_offset", "m",
          "surface nodes this close to a wall in the reference shape (attachment) take no wall "
          "contact"},
+        {"contact_axis_radius", "0 (none)", "m",
+         "a virtual rigid rod of this radius along the axis: the surface keeps it from the "
+         "line (the fluid where three leaflets meet), and the gap seal counts it as a piece"},
+        {"contact_axis", "0,0,0,0,0,1", "m,-", "the rod's axis: a point X,Y,Z and a direction"},
         {"gap_seal_resistance", "1e8", "Pa s/m^2", "Brinkman resistance of a closed gap"},
         {"gap_seal_gap_closed", "1.25 offset", "m", "gap width at full resistance"},
         {"gap_seal_gap_open", "2 offset", "m", "gap width where the resistance starts"},

@@ -126,7 +126,7 @@ void Simulation::build_physics(const Mesh &mesh) {
     }
     if (scene_.gap_seal) {
       auto g = std::make_unique<GapSeal>(space_, fluid_->cells(), surface,
-                                         GapSealParams::from_options(cp.offset));
+                                         GapSealParams::from_options(cp.offset, cp.axis));
       seal_ = g.get();
       system_->add_module(std::move(g));
     }
@@ -391,6 +391,9 @@ std::vector<std::string> Simulation::monitor_columns() const {
   if (contact_ && !contact_->params().walls.empty())
     for (auto c : {"contact_wall_pairs", "contact_wall_min_gap"})
       columns.push_back(c);
+  if (contact_ && contact_->params().axis.on())
+    for (auto c : {"contact_axis_pairs", "contact_axis_min_distance"})
+      columns.push_back(c);
   if (seal_)
     for (auto c : {"seal_cells", "seal_max_alpha"})
       columns.push_back(c);
@@ -416,6 +419,9 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
                            contact_->stats().max_penetration, contact_->stats().force});
   if (contact_ && !contact_->params().walls.empty())
     row.insert(row.end(), {(double)contact_->stats().wall_pairs, contact_->stats().wall_min_gap});
+  if (contact_ && contact_->params().axis.on())
+    row.insert(row.end(),
+               {(double)contact_->stats().axis_pairs, contact_->stats().axis_min_distance});
   if (seal_)
     row.insert(row.end(), {(double)seal_->stats().sealing_cells, seal_->stats().max_alpha});
   if (ale_->moving())

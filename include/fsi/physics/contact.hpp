@@ -15,6 +15,12 @@
 // Rigid walls (contact_wall.hpp): -contact_walls GROUPS (fluid boundary groups, default none),
 // wall_offset [m] (default offset), wall_exclude [m] (default 2 wall_offset): the same pressure
 // law against the nearest wall triangle, on the surface node alone (the wall does not move).
+// Axis rod: -contact_axis_radius R [m] (default 0: none), -contact_axis X,Y,Z,EX,EY,EZ (a point
+// and the direction; default the z axis): every surface node keeps R from the line, with the
+// same pressure law on its whole lumped area.  Three leaflets closing meet at one point on the
+// axis, where the fluid between their corners is squeezed from three sides; the rod keeps that
+// column of fluid at radius R (it is the valve's minimum gap at its centre) and the gap seal
+// (gap_seal.hpp) closes it.
 #pragma once
 #include "fsi/physics/contact_geometry.hpp"
 #include "fsi/physics/contact_surface.hpp"
@@ -30,6 +36,7 @@ struct ContactParams {
   double offset = 0, penalty = 1e8, ramp = 0, margin = 0;
   std::vector<std::string> walls; // rigid fluid boundary groups the surface keeps away from
   double wall_offset = 0, wall_exclude = 0;
+  AxisLine axis; // a virtual rigid rod the surface keeps away from (radius 0: none)
   static ContactParams from_options();
   // Contact pressure psi'(p) [Pa] and its derivative at penetration p = delta - d.
   double pressure(double p) const;
@@ -37,12 +44,14 @@ struct ContactParams {
 };
 
 struct ContactStats {
-  int active_pairs = 0;       // node-triangle pairs closer than the offset
-  double max_penetration = 0; // max (offset - d) [m]
-  double force = 0;           // sum of |contact force| over nodes / 2 [N]
-  long pattern_misses = 0;    // Jacobian blocks left out (pair outside the pattern)
-  int wall_pairs = 0;         // surface nodes closer to a rigid wall than the wall offset
-  double wall_min_gap = 0;    // smallest node-to-wall distance [m] (capped at the search radius)
+  int active_pairs = 0;         // node-triangle pairs closer than the offset
+  double max_penetration = 0;   // max (offset - d) [m]
+  double force = 0;             // sum of |contact force| over nodes / 2 [N]
+  long pattern_misses = 0;      // Jacobian blocks left out (pair outside the pattern)
+  int wall_pairs = 0;           // surface nodes closer to a rigid wall than the wall offset
+  double wall_min_gap = 0;      // smallest node-to-wall distance [m] (capped at the search radius)
+  int axis_pairs = 0;           // surface nodes closer to the axis than the rod radius
+  double axis_min_distance = 0; // smallest node-to-axis distance [m]
 };
 
 class ContactModule : public PhysicsModule {
@@ -79,7 +88,8 @@ private:
                bool all = false); // all: every triangle in range, not the nearest per piece
   // Calls f(nodes, penetration, node weight, g, H) for every pair closer than the offset, with
   // the distance's gradient g and Hessian H in the 12 coordinates of nodes (node, triangle);
-  // against a wall triangle nodes[1..3] are -1 (only the node's 3 coordinates count).
+  // against a wall triangle nodes[1..3] are -1, against the axis rod -2 (only the node's 3
+  // coordinates count).
   template <class F> void for_each_active(F &&f);
   static unsigned long long key(int a, int b) {
     if (a > b) std::swap(a, b);
@@ -89,7 +99,7 @@ private:
   ContactParams p_;
   std::shared_ptr<ContactWall> wall_;
   std::vector<char> wall_node_; // surface nodes that contact the walls
-  double wall_min_gap_ = 0;
+  double wall_min_gap_ = 0, axis_min_distance_ = 0;
   std::unordered_set<unsigned long long> pattern_, pending_;
   bool changed_ = false;
   ContactStats stats_;

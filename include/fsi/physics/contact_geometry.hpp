@@ -20,3 +20,19 @@ void point_triangle_distance_derivatives(const double p[3], const double a[3], c
                                          double g[12], double H[12][12]);
 
 } // namespace fsi
+
+namespace fsi {
+
+// A straight line (the valve's axis): its distance from a point with the exact gradient and
+// Hessian, for contact against a virtual rod of radius `radius` around it.
+struct AxisLine {
+  double point[3] = {0, 0, 0};
+  double dir[3] = {0, 0, 1}; // unit
+  double radius = 0;         // rod radius [m]; 0: no rod
+  bool on() const { return radius > 0; }
+  // Distance r from p to the line; with g non-null also dr/dp (3) and, with H, d2r/dp2 (3x3).
+  // The derivatives require r > 0.
+  double distance(const double p[3], double g[3] = nullptr, double H[3][3] = nullptr) const;
+};
+
+} // namespace fsi

@@ -12,8 +12,12 @@
 // Options (prefix -gap_seal_): resistance alpha_max [Pa s/m^2] (default 1e8), gap_closed [m]
 // (default 1.25 x -contact_offset), gap_open [m] (default 2 x -contact_offset), ramp_time [s]
 // (default 0: none).
+// With the contact's axis rod (contact.hpp, radius R) the rod counts as one more piece, at the
+// signed distance r - R from a centroid r from the axis: the fluid column the rod keeps open
+// between three leaflets' corners seals when they close on it, as a gap between two does.
 #pragma once
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/physics/contact_geometry.hpp"
 #include "fsi/physics/contact_surface.hpp"
 #include "fsi/physics/physics_module.hpp"
 #include <memory>
@@ -22,7 +26,8 @@ namespace fsi {
 
 struct GapSealParams {
   double resistance = 1e8, gap_closed = 0, gap_open = 0, ramp_time = 0;
-  static GapSealParams from_options(double contact_offset);
+  AxisLine axis; // the contact's axis rod (radius 0: none)
+  static GapSealParams from_options(double contact_offset, const AxisLine &axis);
 };
 
 struct GapSealStats {
@@ -51,6 +56,7 @@ public:
 private:
   // Target resistance at point c from its distances to the two nearest pieces (best: scratch).
   double target(const double c[3], std::vector<double> &best) const;
+  double reach() const; // how far from a centroid pieces count
   double absdet_af(const StepContext &ctx, PetscInt k) const; // |det J| of cell k at t_{n+af}
   const Space &space_;
   std::vector<PetscInt> cells_;
