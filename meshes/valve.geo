@@ -11,6 +11,9 @@
 //            how far below the commissures the free edges meet the axis
 //   stretch  vertical stretch of that sphere (leaflet height = stretch * rho_l)
 //   gap      gap between neighbouring free edges in this reference (nearly closed) shape
+//   rcenter  radius of a central hole the three leaflets end on (default 0: their corners meet
+//            with the gap between them): a column of fluid at the valve's centre that the axis
+//            rod of the contact (-contact_axis_radius < rcenter) keeps open and the gap seal closes
 //   sinus    1: three Valsalva sinus bulges behind the leaflets; 0: a straight tube
 //   sdepth   how far the sinus bulges reach out of the tube; swidth their half-width
 //   h        element size on and near the leaflets; hfar far from them (default 4 h);
@@ -34,6 +37,7 @@ If (!Exists(t)) t = 0.00045; EndIf
 If (!Exists(rho_l)) rho_l = 0.0135; EndIf
 If (!Exists(stretch)) stretch = 1.25; EndIf
 If (!Exists(gap)) gap = 0.0008; EndIf
+If (!Exists(rcenter)) rcenter = 0; EndIf
 If (!Exists(sinus)) sinus = 1; EndIf
 If (!Exists(sdepth)) sdepth = 0.004; EndIf
 If (!Exists(swidth)) swidth = 0.009; EndIf
@@ -100,6 +104,10 @@ For k In {0:2}
   Rotate {{0, 0, 1}, {0, 0, 0}, Pi / 6} { Volume{24 + 10 * k}; }
   sector() = BooleanIntersection{ Volume{22 + 10 * k}; Delete; }{ Volume{23 + 10 * k}; Delete; };
   sector() = BooleanIntersection{ Volume{sector()}; Delete; }{ Volume{24 + 10 * k}; Delete; };
+  If (rcenter > 0) // the leaflets end on a circle of radius rcenter about the axis
+    Cylinder(25 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + zc, rcenter};
+    sector() = BooleanDifference{ Volume{sector()}; Delete; }{ Volume{25 + 10 * k}; Delete; };
+  EndIf
   leaf() += BooleanIntersection{ Volume{shell()}; Delete; }{ Volume{sector()}; Delete; };
 EndFor
 
