@@ -50,6 +50,9 @@ const std::vector<Section> &sections() {
         {"mesh_cache_dir", "results/.mesh_cache", "-", "where meshed .geo files are cached"},
         {"mesh_partitioner", "ptscotch", "-",
          "cell partition over the ranks: ptscotch or metis (edge cut and balance in the header)"},
+        {"mesh_reorder", "none", "-",
+         "none | rcm: mesh points (hence dofs) in reverse Cuthill-McKee order before "
+         "distribution (faster assembly)"},
         {"mesh_max_cells", "5e7", "-",
          "refuse a -mesh_h whose cell estimate (bounding box / h^3) exceeds this"}}},
       {"Time integration (PETSc TS names)",
