@@ -56,6 +56,19 @@ If (Exists(hbase))
     Error("valve.geo: the sizes h, hbase and hbasew must be positive");
   EndIf
 EndIf
+If (rcenter < 0)
+  Error("valve.geo: rcenter (the central hole's radius) must be >= 0");
+EndIf
+If (Exists(hcenter))
+  If (hcenter <= 0)
+    Error("valve.geo: hcenter (the element size about the axis) must be positive");
+  EndIf
+EndIf
+If (Exists(hcenterw))
+  If (hcenterw <= 0)
+    Error("valve.geo: hcenterw (the width of the refinement about the axis) must be positive");
+  EndIf
+EndIf
 
 zc = stretch * rho_l;         // commissure height: the ellipsoids' centre height
 Ltot = Lin + zc + Lout;

@@ -99,9 +99,9 @@ int main() {
   }
   check(worst_s < 1e-6, "contact pressure slope = its derivative", worst_s);
 
-  // The axis rod's distance: a tilted line through an off-origin point, against the distance
-  // from the closest point found by minimising over the line, and its derivatives against
-  // central differences.
+  // The axis rod's distance: a tilted line through an off-origin point, against the cross
+  // product formula and samples along the line, and its derivatives against central
+  // differences.
   AxisLine ax;
   const double e[3] = {0.3, -0.5, 0.8}, en = std::sqrt(0.09 + 0.25 + 0.64);
   for (int i = 0; i < 3; ++i) {
@@ -115,19 +115,21 @@ int main() {
       v = u(rng);
     double g[3], H[3][3];
     const double r = ax.distance(x, g, H);
-    double s = 0, q2 = 0; // closest point: the projection on the line
-    for (int i = 0; i < 3; ++i)
-      s += (x[i] - ax.point[i]) * ax.dir[i];
-    for (int i = 0; i < 3; ++i)
-      q2 += std::pow(x[i] - ax.point[i] - s * ax.dir[i], 2);
-    double far = 1e300; // and no point of the line is closer (samples around it)
+    // Independent references: |(x - a) x e| (the parallelogram's height), and no point of the
+    // line near the closest one is closer (samples every 1e-2 along it).
+    const double a[3] = {x[0] - ax.point[0], x[1] - ax.point[1], x[2] - ax.point[2]};
+    const double *d = ax.dir;
+    const double cx = a[1] * d[2] - a[2] * d[1], cy = a[2] * d[0] - a[0] * d[2],
+                 cz = a[0] * d[1] - a[1] * d[0];
+    const double s = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+    double far = 1e300;
     for (int k = -50; k <= 50; ++k) {
       double d2 = 0;
       for (int i = 0; i < 3; ++i)
-        d2 += std::pow(x[i] - ax.point[i] - (s + 1e-2 * k) * ax.dir[i], 2);
+        d2 += std::pow(a[i] - (s + 1e-2 * k) * d[i], 2);
       far = std::min(far, std::sqrt(d2));
     }
-    worst_ad = std::max({worst_ad, std::fabs(r - std::sqrt(q2)), std::sqrt(q2) - far});
+    worst_ad = std::max({worst_ad, std::fabs(r - std::sqrt(cx * cx + cy * cy + cz * cz)), r - far});
     const double h = 1e-6;
     for (int j = 0; j < 3; ++j) {
       double xp[3] = {x[0], x[1], x[2]}, xm[3] = {x[0], x[1], x[2]}, gp[3], gm[3];
@@ -139,7 +141,7 @@ int main() {
         worst_ah = std::max(worst_ah, std::fabs((gp[i] - gm[i]) / (2 * h) - H[i][j]));
     }
   }
-  check(worst_ad < 1e-12, "axis distance = distance to the line's closest point", worst_ad);
+  check(worst_ad < 1e-12, "axis distance = |(x - a) x e|, no sample of the line closer", worst_ad);
   check(worst_ag < 1e-6, "axis distance gradient = central differences", worst_ag);
   check(worst_ah < 1e-5, "axis distance Hessian = central differences", worst_ah);
   return failures ? 1 : 0;

@@ -141,10 +141,6 @@ void point_triangle_distance_derivatives(const double p[3], const double a[3], c
   }
 }
 
-} // namespace fsi
-
-namespace fsi {
-
 double AxisLine::distance(const double p[3], double g[3], double H[3][3]) const {
   double q[3], s = 0;
   for (int i = 0; i < 3; ++i)

@@ -77,8 +77,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
   const PetscInt fc_g = cg[0], sc_g = cg[1];
   const double per_step = steps_ ? (wall - setup_time_) / steps_ : 0.0;
   // What holds the memory: the Jacobian's own share (values, column indices and row starts as
-  // allocated; PETSc's MatInfo.memory is not tracked in this build),
-  // and the peak per degree of freedom of this rank.
+  // allocated; PETSc's MatInfo.memory is not tracked in this build) and the peak per dof.
   double mat_nz = 0, mat_mb = 0;
   if (Mat J = sim.system().matrix()) {
     MatInfo global, local;
@@ -92,6 +91,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
                                        1048576.0);
   }
   const double dofs_per_rank = double(space.n_velocity + space.n_pressure) / size;
+  const double kb_per_dof = dofs_per_rank > 0 ? mem_max * 1024 / dofs_per_rank : 0.0;
 
   std::vector<std::string> active;
   for (auto &m : sim.system().modules())
@@ -134,7 +134,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
            rt > 0 ? double(fc_g + sc_g) / size * residuals_ / rt : 0.0)
       .set("peak_memory_mb_per_rank_max", mem_max)
       .set("peak_memory_mb_per_rank_min", mem_min)
-      .set("peak_memory_kb_per_dof", dofs_per_rank > 0 ? mem_max * 1024 / dofs_per_rank : 0.0)
+      .set("peak_memory_kb_per_dof", kb_per_dof)
       .set("jacobian_nonzeros", mat_nz)
       .set("jacobian_mb_per_rank_max", mat_mb);
   const TimeParams &tp = scene_.time;
@@ -238,7 +238,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
       std::max(0.0, wall - setup_time_ - jt - rt - ls - mesh_motion_time_ - rebuild_time_ -
                         remesh_time - output_time_),
       (long)(space.n_velocity + space.n_pressure), (long)space.n_velocity, (long)space.n_pressure,
-      mem_max, mat_mb, dofs_per_rank > 0 ? mem_max * 1024 / dofs_per_rank : 0.0, out.dir().c_str());
+      mem_max, mat_mb, kb_per_dof, out.dir().c_str());
 }
 
 void RunReport::remeshed(const Output &out, const RemeshReport &r) {

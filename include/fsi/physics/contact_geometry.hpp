@@ -19,10 +19,6 @@ void point_triangle_distance_derivatives(const double p[3], const double a[3], c
                                          const double c[3], TriRegion region, double &d,
                                          double g[12], double H[12][12]);
 
-} // namespace fsi
-
-namespace fsi {
-
 // A straight line (the valve's axis): its distance from a point with the exact gradient and
 // Hessian, for contact against a virtual rod of radius `radius` around it.
 struct AxisLine {
