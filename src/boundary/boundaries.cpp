@@ -156,6 +156,16 @@ std::vector<double> Boundaries::monitor_values() const {
   return v;
 }
 
+void Boundaries::bind_monitors(const std::vector<std::string> &columns) {
+  for (auto &bc : bcs_)
+    bc->bind_monitors(columns);
+}
+
+void Boundaries::observe(double t, const std::vector<double> &row) {
+  for (auto &bc : bcs_)
+    bc->observe(t, row);
+}
+
 std::vector<std::vector<PetscInt>> Boundaries::dense_couplings() const {
   std::vector<std::vector<PetscInt>> blocks;
   for (auto &bc : bcs_) {

@@ -8,11 +8,21 @@
 //   (default: the largest vertex distance from that axis); expression: -bc_<name>_expr, one
 //   value (speed along the direction) or three (a vector) in x, y, z, t.
 // Direction: -bc_<name>_direction (default: the boundary's mean inward normal).
+// Backflow stop (the paper's rule: "diastole starts when the valve is closed and the inflow is
+// set to zero"): -bc_<name>_stop_backflow_when COLUMN<VALUE (or >) names a monitor column
+// (monitor.csv) and a threshold, e.g. contact_pairs>20 or valve_goa_ratio<0.1.  At the end of
+// an accepted step in which the waveform's flow is backwards (Q < 0) and the condition holds,
+// the flow is ramped to zero over -bc_<name>_stop_ramp seconds (default 5 ms; a smooth step,
+// since an abrupt stop of a moving column is a pressure spike) and held there until the
+// waveform's flow turns forward again (the next systole).  Monitored as <name>_flow_factor
+// (1: the waveform's flow, 0: stopped); the state is kept in checkpoints and rebuilt runs.
 #include "fsi/boundary/boundary_condition.hpp"
 #include "fsi/scene/options.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <memory>
 
 namespace fsi {
@@ -27,6 +37,15 @@ struct FlowRate : BoundaryCondition {
   MPI_Comm comm_;
   std::string pre_;
 
+  // Backflow stop: the condition, its column's index in the monitor row, the latch.
+  std::string stop_column_;
+  char stop_op_ = 0; // '<' or '>'; 0: no stop
+  double stop_value_ = 0, stop_ramp_ = 0.005;
+  long stop_index_ = -1;
+  bool stopped_ = false;
+  double stop_time_ = 0;
+  double factor_last_ = 1; // of the last prepared time, monitored
+
   explicit FlowRate(const BoundarySetup &s)
       : BoundaryCondition(s, Data::velocity, true, true),
         comm_(PetscObjectComm((PetscObject)s.space.dm)), pre_(s.prefix()) {
@@ -35,6 +54,7 @@ struct FlowRate : BoundaryCondition {
                        "components");
     value_ = opt::real(pre_ + "value", 1.0);
     wave_ = Waveform::from_options(pre_);
+    read_stop_condition();
     // Area, area-weighted normal and centroid on the reference position.
     const double *X = s.space.X.data();
     double loc[7] = {0, 0, 0, 0, 0, 0, 0}, glob[7]; // area, area n, area centroid
@@ -108,6 +128,74 @@ struct FlowRate : BoundaryCondition {
     }
   }
 
+  void read_stop_condition() {
+    const std::string opt_name = pre_ + "stop_backflow_when";
+    stop_ramp_ = opt::nonnegative(pre_ + "stop_ramp", 0.005);
+    if (!opt::has(opt_name)) return;
+    const std::string c = opt::required_string(opt_name);
+    const size_t at = c.find_first_of("<>");
+    const std::string bad =
+        "option -" + opt_name + " '" + c +
+        "': give a monitor column, < or >, and a number (e.g. contact_pairs>20)";
+    if (at == std::string::npos || at == 0 || at + 1 >= c.size()) throw InputError(bad);
+    stop_column_ = c.substr(0, at);
+    stop_op_ = c[at];
+    char *end = nullptr;
+    const std::string num = c.substr(at + 1);
+    stop_value_ = std::strtod(num.c_str(), &end);
+    if (end == num.c_str() || *end != '\0' || !std::isfinite(stop_value_)) throw InputError(bad);
+  }
+  void bind_monitors(const std::vector<std::string> &columns) override {
+    if (!stop_op_) return;
+    auto it = std::find(columns.begin(), columns.end(), stop_column_);
+    if (it == columns.end())
+      throw InputError("option -" + pre_ + "stop_backflow_when: the run has no monitor column '" +
+                       stop_column_ + "'; its columns: " + opt::join(columns));
+    stop_index_ = it - columns.begin();
+  }
+  // The waveform's flow times the stop's factor: 1 open, a smooth step down to 0 over the ramp
+  // once stopped, back to 1 as soon as the waveform's flow is forward.
+  double flow_factor(double t) const {
+    if (!stopped_ || value_ * wave_(t) > 0) return 1;
+    if (stop_ramp_ <= 0) return 0;
+    const double x = std::clamp((t - stop_time_) / stop_ramp_, 0.0, 1.0);
+    return 1 - x * x * (3 - 2 * x);
+  }
+  void observe(double t, const std::vector<double> &row) override {
+    if (stop_index_ < 0) return;
+    const double q = value_ * wave_(t), m = row[stop_index_];
+    if (stopped_ && q > 0) {
+      stopped_ = false;
+      PetscPrintf(comm_, "  boundary '%s': the flow turns forward at t = %.6g s: inflow on\n",
+                  name_.c_str(), t);
+    } else if (!stopped_ && q < 0 && (stop_op_ == '<' ? m < stop_value_ : m > stop_value_)) {
+      stopped_ = true, stop_time_ = t;
+      PetscPrintf(comm_,
+                  "  boundary '%s': %s = %g %c %g during backflow at t = %.6g s: the inflow "
+                  "stops (ramp %g s)\n",
+                  name_.c_str(), stop_column_.c_str(), m, stop_op_, stop_value_, t, stop_ramp_);
+    }
+  }
+  void save_state(std::map<std::string, double> &s) const override {
+    if (!stop_op_) return;
+    s[name_ + "_stopped"] = stopped_;
+    s[name_ + "_stop_time"] = stop_time_;
+  }
+  // A state written without the stop (a systole run continued with it) resumes open.
+  void restore_state(const std::map<std::string, double> &s) override {
+    auto a = s.find(name_ + "_stopped"), b = s.find(name_ + "_stop_time");
+    if (!stop_op_ || a == s.end() || b == s.end()) return;
+    stopped_ = a->second != 0, stop_time_ = b->second;
+  }
+  std::vector<std::string> monitor_columns() const override {
+    if (!stop_op_) return {};
+    return {name_ + "_flow_factor"};
+  }
+  std::vector<double> monitor_values() const override {
+    if (!stop_op_) return {};
+    return {factor_last_};
+  }
+
   std::string type() const override { return "flow_rate"; }
 
   // Flux of the interpolated velocity: on a flat P2 triangle the vertex functions integrate to
@@ -140,7 +228,8 @@ struct FlowRate : BoundaryCondition {
     if (glob[0] == 0)
       throw InputError("-" + pre_ + "type flow_rate: the profile has no flux through '" + name_ +
                        "' (zero area, or every node held by another boundary)");
-    scale_ = (value_ * wave_(t) - glob[1]) / glob[0];
+    factor_last_ = flow_factor(t);
+    scale_ = (value_ * wave_(t) * factor_last_ - glob[1]) / glob[0];
   }
 
   void value(const double x[3], double t, double v[3]) const override {

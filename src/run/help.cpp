@@ -173,6 +173,10 @@ const std::vector<Section> &sections() {
          "expression waveform: 1 value in t"},
         {"bc_<b>_center", "flow_rate: area centroid", "m", "parabolic: a point on the axis"},
         {"bc_<b>_radius", "flow_rate: farthest vertex", "m", "parabolic: the radius"},
+        {"bc_<b>_stop_backflow_when", "", "-",
+         "flow_rate: COLUMN<VALUE or COLUMN>VALUE of monitor.csv (e.g. contact_pairs>20): the "
+         "backflow stops once it holds (valve closed), until the flow turns forward"},
+        {"bc_<b>_stop_ramp", "0.005", "s", "flow_rate: the stop's smooth ramp to zero"},
         {"bc_<b>_backflow_beta", "1", "-", "pressure, windkessel: backflow stabilisation (0 off)"},
         {"bc_<b>_R_p", "(required)", "Pa s/m^3", "windkessel: proximal resistance"},
         {"bc_<b>_C", "(required)", "m^3/Pa", "windkessel: compliance"},

@@ -169,6 +169,7 @@ void Simulation::build_physics(const Mesh &mesh) {
     }
     fields_ = std::make_unique<FieldWriter>(space_, out_.dir, set);
   }
+  bcs_->bind_monitors(monitor_columns());
 }
 
 // Initial state at t = 0: rest, a uniform velocity, or the exact flow (-ic rest|velocity|exact).
@@ -438,6 +439,7 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
     FSI_CALL(VecDestroy(&dloc));
     wss_.write_instantaneous(step_index(), time());
   }
+  bcs_->observe(time(), row); // a flow that stops when the valve has closed
   return row;
 }
 

@@ -39,6 +39,9 @@ public:
   void restore_state(const std::map<std::string, double> &s);
   std::vector<std::string> monitor_columns() const;
   std::vector<double> monitor_values() const;
+  // Monitor-driven types (boundary_condition.hpp): the run's columns once, each step's row.
+  void bind_monitors(const std::vector<std::string> &columns);
+  void observe(double t, const std::vector<double> &row);
   // Dense all-to-all couplings of the boundary terms (global dofs, one list per block).
   std::vector<std::vector<PetscInt>> dense_couplings() const;
   // Global number of pressure dofs held at zero because no fluid cell touches them.

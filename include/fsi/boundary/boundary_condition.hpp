@@ -70,6 +70,11 @@ public:
   virtual void restore_state(const std::map<std::string, double> &) {}
   virtual std::vector<std::string> monitor_columns() const { return {}; }
   virtual std::vector<double> monitor_values() const { return {}; }
+  // A type that reacts to a monitored quantity (a flow that stops when the valve has closed)
+  // finds its column in the run's monitor columns, once after setup (an unknown column is an
+  // InputError), then sees each accepted step's monitor row at its end time t (same order).
+  virtual void bind_monitors(const std::vector<std::string> &columns) {}
+  virtual void observe(double t, const std::vector<double> &row) {}
   // Global velocity dofs that its Jacobian couples all with all (same list on every rank).
   virtual std::vector<PetscInt> dense_coupling() const { return {}; }
 
