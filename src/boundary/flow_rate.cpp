@@ -22,8 +22,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <memory>
+#include <string>
 
 namespace fsi {
 namespace {
@@ -163,7 +165,9 @@ struct FlowRate : BoundaryCondition {
   }
   void observe(double t, const std::vector<double> &row) override {
     if (stop_index_ < 0) return;
-    const double q = value_ * wave_(t), m = row[stop_index_];
+    const double q = value_ * wave_(t);
+    double m = row[stop_index_];
+    MPI_Bcast(&m, 1, MPI_DOUBLE, 0, comm_); // one decision on every rank, whatever the column
     if (stopped_ && q > 0) {
       stopped_ = false;
       PetscPrintf(comm_, "  boundary '%s': the flow turns forward at t = %.6g s: inflow on\n",
