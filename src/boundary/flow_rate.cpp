@@ -22,7 +22,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -142,10 +141,8 @@ struct FlowRate : BoundaryCondition {
     if (at == std::string::npos || at == 0 || at + 1 >= c.size()) throw InputError(bad);
     stop_column_ = c.substr(0, at);
     stop_op_ = c[at];
-    char *end = nullptr;
-    const std::string num = c.substr(at + 1);
-    stop_value_ = std::strtod(num.c_str(), &end);
-    if (end == num.c_str() || *end != '\0' || !std::isfinite(stop_value_)) throw InputError(bad);
+    if (!opt::to_real(c.substr(at + 1), stop_value_) || !std::isfinite(stop_value_))
+      throw InputError(bad);
   }
   void bind_monitors(const std::vector<std::string> &columns) override {
     if (!stop_op_) return;

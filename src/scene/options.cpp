@@ -66,10 +66,15 @@ static bool raw(const std::string &name, std::string &value) {
   return set;
 }
 
-static double parse_real(const std::string &name, const std::string &text) {
+bool to_real(const std::string &text, double &v) {
   char *end = nullptr;
-  double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0')
+  v = std::strtod(text.c_str(), &end);
+  return !text.empty() && *end == '\0';
+}
+
+static double parse_real(const std::string &name, const std::string &text) {
+  double v;
+  if (!to_real(text, v))
     throw InputError("option -" + name + " expects a number, got '" + text + "'");
   if (!std::isfinite(v))
     throw InputError("option -" + name + " expects a finite number, got '" + text + "'");

@@ -22,6 +22,7 @@ std::string choice(const std::string &name, const std::string &def,
                    const std::vector<std::string> &choices);
 std::vector<std::string> list(const std::string &name); // comma separated, may be empty
 std::vector<double> reals(const std::string &name);     // comma separated numbers
+bool to_real(const std::string &text, double &v);       // the whole text is one number
 
 std::string join(const std::vector<std::string> &v, const std::string &sep = ", ");
 
