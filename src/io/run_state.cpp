@@ -13,6 +13,14 @@ namespace fsi {
 // Version 2 adds the material reference per vertex; version 1 files (without it) still load.
 static const double FORMAT_VERSION = 2;
 
+// A scene tag without its generalized-alpha spectral radius: the state (velocity, acceleration,
+// displacement) is the same whatever rho_inf, so a run may continue with more or less numerical
+// damping (e.g. rho_inf 0 once a valve has closed and its leaflets ring against each other).
+static std::string without_rho_inf(const std::string &tag) {
+  const size_t at = tag.find(" rho_inf ");
+  return at == std::string::npos ? tag : tag.substr(0, at);
+}
+
 void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write) const {
   static long writes = 0; // -checkpoint_crash_test K: SIGKILL halfway through the K-th write
   int rank;
@@ -101,7 +109,12 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
       const double version = f.get_string("format") == "fsi_app checkpoint" ? f.get("version") : 0;
       if (version != 1 && version != FORMAT_VERSION)
         throw InputError("'" + path + "' is not an fsi_app checkpoint of this version");
-      if (f.get_string("scene") != scene)
+      const std::string written = f.get_string("scene");
+      if (written != scene && without_rho_inf(written) == without_rho_inf(scene))
+        std::printf("fsi_app: restart: %s (the checkpoint's run had %s)\n",
+                    scene.substr(scene.find(" rho_inf ") + 1).c_str(),
+                    written.substr(written.find(" rho_inf ") + 1).c_str());
+      else if (written != scene)
         throw InputError("restart file '" + path + "' was written by another scene (" +
                          f.get_string("scene") + "; this one: " + scene +
                          "): restart with the options of the run that wrote it");
