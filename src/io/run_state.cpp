@@ -13,12 +13,13 @@ namespace fsi {
 // Version 2 adds the material reference per vertex; version 1 files (without it) still load.
 static const double FORMAT_VERSION = 2;
 
-// A scene tag without its generalized-alpha spectral radius: the state (velocity, acceleration,
-// displacement) is the same whatever rho_inf, so a run may continue with more or less numerical
-// damping (e.g. rho_inf 0 once a valve has closed and its leaflets ring against each other).
-static std::string without_rho_inf(const std::string &tag) {
+// The generalized-alpha spectral radius part of a scene tag (Scene::tag: "... rho_inf R"), or "".
+// The state (velocity, acceleration, displacement) is the same whatever rho_inf, so a run may
+// continue with more or less numerical damping (e.g. rho_inf 0 once a valve has closed and its
+// leaflets ring against each other).
+static std::string rho_inf_part(const std::string &tag) {
   const size_t at = tag.find(" rho_inf ");
-  return at == std::string::npos ? tag : tag.substr(0, at);
+  return at == std::string::npos ? "" : tag.substr(at + 1);
 }
 
 void RunState::write(MPI_Comm comm, const std::string &path, long crash_at_write) const {
@@ -110,14 +111,15 @@ RunState RunState::read(MPI_Comm comm, const std::string &path, const std::strin
       if (version != 1 && version != FORMAT_VERSION)
         throw InputError("'" + path + "' is not an fsi_app checkpoint of this version");
       const std::string written = f.get_string("scene");
-      if (written != scene && without_rho_inf(written) == without_rho_inf(scene))
-        std::printf("fsi_app: restart: %s (the checkpoint's run had %s)\n",
-                    scene.substr(scene.find(" rho_inf ") + 1).c_str(),
-                    written.substr(written.find(" rho_inf ") + 1).c_str());
-      else if (written != scene)
-        throw InputError("restart file '" + path + "' was written by another scene (" +
-                         f.get_string("scene") + "; this one: " + scene +
+      const std::string r_old = rho_inf_part(written), r_new = rho_inf_part(scene);
+      if (written.substr(0, written.size() - r_old.size()) !=
+          scene.substr(0, scene.size() - r_new.size()))
+        throw InputError("restart file '" + path + "' was written by another scene (" + written +
+                         "; this one: " + scene +
                          "): restart with the options of the run that wrote it");
+      if (r_old != r_new)
+        std::printf("fsi_app: restart: %s (the checkpoint's run had %s)\n", r_new.c_str(),
+                    r_old.c_str());
       meta[0] = f.get("step");
       meta[1] = f.get("time");
       meta[2] = f.get("dt");
