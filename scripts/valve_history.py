@@ -1,4 +1,8 @@
-"""valve_history.png from a valve run's monitor.csv (called by scripts/valve_pictures)."""
+"""valve_history.png from a valve run's monitor.csv (called by scripts/valve_pictures).
+  /usr/bin/python3 scripts/valve_history.py DIR [DIR ...]
+Several DIRs are one run's pieces (each continued from the previous one's checkpoint by
+-restart): their rows are joined in time, a later piece replacing an earlier one from its first
+time on; the picture goes to the last DIR."""
 import csv
 import os
 import sys
@@ -8,8 +12,20 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-d = sys.argv[1]
-rows = list(csv.DictReader(open(os.path.join(d, "monitor.csv"))))
+dirs = sys.argv[1:]
+if not dirs:
+    sys.exit("usage: valve_history.py DIR [DIR ...]")
+rows = []
+for d in dirs:
+    f = os.path.join(d, "monitor.csv")
+    if not os.path.exists(f):
+        f += ".partial"  # a piece still running, or stopped
+    if not os.path.exists(f):
+        sys.exit(f"valve_history: no monitor.csv in {d}")
+    piece = list(csv.DictReader(open(f)))
+    if piece:
+        start = float(piece[0]["time"])
+        rows = [r for r in rows if float(r["time"]) < start - 1e-12] + piece
 if not rows:
     sys.exit("valve_history: monitor.csv has no rows")
 col = lambda c, s=1.0: [s * float(r[c]) for r in rows]
@@ -35,7 +51,7 @@ ax[3].legend()
 ax[3].set_xlabel("time [ms]")
 for a in ax:
     a.grid(True, alpha=0.3)
-fig.suptitle(os.path.basename(os.path.normpath(d)))
+fig.suptitle(" + ".join(os.path.basename(os.path.normpath(x)) for x in dirs))
 fig.tight_layout()
 out = os.path.join(d, "valve_history.png")
 fig.savefig(out, dpi=110)

@@ -1,6 +1,7 @@
 """Rendered pictures of a valve run (pvpython; called by scripts/valve_pictures RESULTS_DIR
 [TIME ...]): leaflets coloured by displacement, velocity magnitude on the mid-plane x = 0, wall
-shear stress on the leaflets, at the fields' times nearest to each TIME [s]."""
+shear stress on the leaflets, at the fields' times nearest to each TIME [s]; and TAWSS and OSI of every
+closed -hemo_window, seen from the aorta and from the ventricle."""
 import os
 import re
 import sys
@@ -45,14 +46,18 @@ def region(lo, hi):
     return th
 
 
+FACE_ARRAYS = ("wss_magnitude", "tawss", "osi")
+
+
 def colour(src, v, array, title, vmin=None, vmax=None):
     disp = Show(src, v)
     disp.Ambient, disp.Diffuse = 0.35, 0.75  # thin curved shells: light them from every side
-    ColorBy(disp, ("POINTS", array, "Magnitude") if array != "wss_magnitude" else ("CELLS", array))
+    on_faces = array in FACE_ARRAYS
+    ColorBy(disp, ("CELLS", array) if on_faces else ("POINTS", array, "Magnitude"))
     lut = GetColorTransferFunction(array)
     lut.ApplyPreset("Viridis (matplotlib)", True)
     if vmin is None:  # the range of what is shown, not of the whole file
-        info = src.PointData[array] if array != "wss_magnitude" else src.CellData[array]
+        info = src.CellData[array] if on_faces else src.PointData[array]
         vmin, vmax = 0.0, max(info.GetRange(-1)[1], 1e-30)
     lut.RescaleTransferFunction(vmin, vmax)
     disp.SetScalarBarVisibility(v, True)
@@ -70,6 +75,26 @@ def camera(v, pos, up, focal=(0, 0, 0.008), scale=0.016):
     v.CameraPosition, v.CameraFocalPoint, v.CameraViewUp = list(pos), list(focal), list(up)
     v.CameraParallelProjection = 1
     v.CameraParallelScale = scale
+
+
+def face_surface(pts, values, name):
+    """A producer of the triangles (3 points each, consecutive) carrying one value per face."""
+    poly = vtk.vtkPolyData()
+    p = vtk.vtkPoints()
+    p.SetData(numpy_to_vtk(np.ascontiguousarray(pts), deep=True))
+    poly.SetPoints(p)
+    nt = len(values)
+    conn = np.hstack([np.full((nt, 1), 3), np.arange(3 * nt).reshape(-1, 3)]).ravel()
+    cells = vtk.vtkCellArray()
+    cells.SetCells(nt, numpy_to_vtkIdTypeArray(conn.astype(np.int64), deep=True))
+    poly.SetPolys(cells)
+    arr = numpy_to_vtk(np.ascontiguousarray(values), deep=True)
+    arr.SetName(name)
+    poly.GetCellData().AddArray(arr)
+    tp = TrivialProducer()
+    tp.GetClientSideObject().SetOutput(poly)
+    tp.UpdatePipeline()
+    return tp
 
 
 # The geometry is each mesh's reference; the mesh displacement moves it to the current one (after
@@ -120,21 +145,7 @@ for want in wanted:
             g = h[f"interface/step_{n}"]
             pts = np.asarray(g["points"]).reshape(-1, 3)
             mag = np.asarray(g["wss_magnitude"]).ravel()
-        poly = vtk.vtkPolyData()
-        p = vtk.vtkPoints()
-        p.SetData(numpy_to_vtk(np.ascontiguousarray(pts), deep=True))
-        poly.SetPoints(p)
-        nt = len(mag)
-        conn = np.hstack([np.full((nt, 1), 3), np.arange(3 * nt).reshape(-1, 3)]).ravel()
-        cells = vtk.vtkCellArray()
-        cells.SetCells(nt, numpy_to_vtkIdTypeArray(conn.astype(np.int64), deep=True))
-        poly.SetPolys(cells)
-        arr = numpy_to_vtk(np.ascontiguousarray(mag), deep=True)
-        arr.SetName("wss_magnitude")
-        poly.GetCellData().AddArray(arr)
-        tp = TrivialProducer()
-        tp.GetClientSideObject().SetOutput(poly)
-        tp.UpdatePipeline()
+        tp = face_surface(pts, mag, "wss_magnitude")
         for name, pos, up in (("top", (0, 0, 0.2), (0, 1, 0)), ("bottom", (0, 0, -0.2), (0, 1, 0))):
             v = view()
             # the 99th percentile: a few edge faces would otherwise take the whole scale
@@ -145,3 +156,29 @@ for want in wanted:
             SaveScreenshot(os.path.join(d, f"wss_{name}_{1000 * tw:.1f}ms.png"), v,
                            ImageResolution=[1000, 800])
     print(f"valve_render: pictures at t = {t:.4f} s in {d}")
+
+# Closed time windows (-hemo_window): TAWSS and OSI on the leaflets' material geometry (the
+# nearly closed shape, the same for every remesh's faces), seen from the aorta and the ventricle.
+done = set()
+for hx in sorted(f for f in os.listdir(d) if f.endswith("hemo.h5")):
+    with h5py.File(os.path.join(d, hx), "r") as h:
+        if "interface" not in h or "material_points" not in h["interface"]:
+            continue
+        for w in (k for k in h["interface"] if k.startswith("window_")):
+            g = h["interface"][w]
+            t0, t1 = (float(x) for x in np.asarray(g["interval"]))
+            if (round(t0, 6), round(t1, 6)) in done:
+                continue
+            done.add((round(t0, 6), round(t1, 6)))
+            pts = np.asarray(h["interface/material_points"]).reshape(-1, 3)
+            for array, title, top in (("tawss", "TAWSS [Pa] (top 1% saturated)", None), ("osi", "OSI", 0.5)):
+                val = np.asarray(g[array]).ravel()
+                tp = face_surface(pts, val, array)
+                for name, pos, up in (("aortic", (0, 0, 0.2), (0, 1, 0)), ("ventricular", (0, 0, -0.2), (0, 1, 0))):
+                    v = view()
+                    colour(tp, v, array, title, 0.0, top if top else float(np.percentile(val, 99)))
+                    camera(v, pos, up)
+                    Render(v)
+                    out = f"{array}_{name}_{1000 * t0:.0f}-{1000 * t1:.0f}ms.png"
+                    SaveScreenshot(os.path.join(d, out), v, ImageResolution=[1000, 800])
+            print(f"valve_render: TAWSS and OSI over {t0:.4f}-{t1:.4f} s in {d}")

@@ -1,0 +1,85 @@
+"""Compare a run's monitor against a reference run over their common time window.
+
+  /usr/bin/python3 scripts/compare_runs.py REF_DIR RUN_DIR [--columns c1,c2] [--bound PERCENT]
+
+For each column: the largest (and when) and the RMS difference |run - ref| at the run's times (the reference
+interpolated linearly), as a percentage of the reference's largest |value| in the window, and the
+same at the window's end.  Prints both runs' cost in the window (steps, wall seconds, Newton).
+With --bound, exits 1 when a column's largest difference passes the bound: the check that an
+adaptive-step run stays within a stated tolerance of a fixed small-step one (docs/valve.md)."""
+import argparse
+import csv
+import math
+import os
+import sys
+
+DEFAULT = "valve_goa_ratio,valve_dp,valve_leaflet_umax,solid_probe0_uz,inlet_p,probe0_vz,energy_kinetic"
+
+
+def load(d):
+    f = os.path.join(d, "monitor.csv")
+    if not os.path.exists(f):
+        f += ".partial"
+    if not os.path.exists(f):
+        sys.exit(f"compare_runs: no monitor.csv in {d}")
+    return [{k: float(v) for k, v in r.items() if v != ""} for r in csv.DictReader(open(f))]
+
+
+def interp(rows, c, t):
+    lo, hi = 0, len(rows) - 1
+    t = min(max(t, rows[lo]["time"]), rows[hi]["time"])  # round-off at the window's ends
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if rows[mid]["time"] <= t:
+            lo = mid
+        else:
+            hi = mid
+    a, b = rows[lo], rows[hi]
+    w = 0.0 if b["time"] == a["time"] else (t - a["time"]) / (b["time"] - a["time"])
+    return (1 - w) * a[c] + w * b[c]
+
+
+def cost(rows):
+    return len(rows), sum(r["step_seconds"] for r in rows), sum(r["newton"] for r in rows)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("ref")
+    ap.add_argument("run")
+    ap.add_argument("--columns", default=DEFAULT)
+    ap.add_argument("--bound", type=float, help="largest difference allowed, %% of max |ref|")
+    a = ap.parse_args()
+    ref, run = load(a.ref), load(a.run)
+    t0 = max(ref[0]["time"] - ref[0]["dt"], run[0]["time"] - run[0]["dt"])
+    t1 = min(ref[-1]["time"], run[-1]["time"])
+    if t1 <= t0:
+        sys.exit(f"compare_runs: the runs share no time window ({a.ref}, {a.run})")
+    inside = lambda rows: [r for r in rows if t0 + 1e-12 < r["time"] <= t1 + 1e-12]
+    refw, runw = inside(ref), inside(run)
+    print(f"window {t0 * 1e3:.2f} - {t1 * 1e3:.2f} ms")
+    for name, rows in (("reference", refw), ("run", runw)):
+        n, s, nw = cost(rows)
+        dts = [r["dt"] for r in rows]
+        print(f"  {name:9s} {n:6d} steps  {s:8.0f} s  Newton {nw:6.0f}  dt {min(dts) * 1e3:.3g} - {max(dts) * 1e3:.3g} ms")
+    worst = 0.0
+    print(f"  {'column':22s} {'max|ref|':>10s} {'max diff %':>10s} {'rms diff %':>10s} {'end diff %':>10s} {'at ms':>8s}")
+    for c in a.columns.split(","):
+        if c not in run[0] or c not in ref[0]:
+            print(f"  {c:22s} (not in both monitors)")
+            continue
+        scale = max(abs(r[c]) for r in refw) or 1.0
+        d = [abs(r[c] - interp(ref, c, r["time"])) / scale * 100 for r in runw]
+        end = abs(runw[-1][c] - interp(ref, c, runw[-1]["time"])) / scale * 100
+        rms = math.sqrt(sum(x * x for x in d) / len(d))
+        worst = max(worst, max(d))
+        at = runw[d.index(max(d))]["time"] * 1e3
+        print(f"  {c:22s} {scale:10.3g} {max(d):10.2f} {rms:10.2f} {end:10.2f} {at:8.2f}")
+    if a.bound is not None:
+        ok = worst <= a.bound
+        print(f"largest difference {worst:.2f} % {'within' if ok else 'PASSES'} the bound {a.bound} %")
+        sys.exit(0 if ok else 1)
+
+
+if __name__ == "__main__":
+    main()
