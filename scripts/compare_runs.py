@@ -1,10 +1,13 @@
 """Compare a run's monitor against a reference run over their common time window.
 
   /usr/bin/python3 scripts/compare_runs.py REF_DIR RUN_DIR [--columns c1,c2] [--bound PERCENT]
+                                           [--scale-from DIR,DIR...]
 
 For each column: the largest (and when) and the RMS difference |run - ref| at the run's times (the reference
 interpolated linearly), as a percentage of the reference's largest |value| in the window, and the
-same at the window's end.  Prints both runs' cost in the window (steps, wall seconds, Newton).
+same at the window's end.  --scale-from takes the scale instead from the largest |value| over
+other runs' whole monitors (e.g. the cycle's pieces: diastole's differences against systole's
+peaks).  Prints both runs' cost in the window (steps, wall seconds, Newton).
 With --bound, exits 1 when a column's largest difference passes the bound: the check that an
 adaptive-step run stays within a stated tolerance of a fixed small-step one (docs/valve.md)."""
 import argparse
@@ -49,6 +52,7 @@ def main():
     ap.add_argument("run")
     ap.add_argument("--columns", default=DEFAULT)
     ap.add_argument("--bound", type=float, help="largest difference allowed, %% of max |ref|")
+    ap.add_argument("--scale-from", help="runs whose whole monitors give each column's scale")
     a = ap.parse_args()
     ref, run = load(a.ref), load(a.run)
     t0 = max(ref[0]["time"] - ref[0]["dt"], run[0]["time"] - run[0]["dt"])
@@ -57,18 +61,20 @@ def main():
         sys.exit(f"compare_runs: the runs share no time window ({a.ref}, {a.run})")
     inside = lambda rows: [r for r in rows if t0 + 1e-12 < r["time"] <= t1 + 1e-12]
     refw, runw = inside(ref), inside(run)
-    print(f"window {t0 * 1e3:.2f} - {t1 * 1e3:.2f} ms")
+    scaled = [r for x in a.scale_from.split(",") for r in load(x)] if a.scale_from else refw
+    print(f"window {t0 * 1e3:.2f} - {t1 * 1e3:.2f} ms; scale: max |value| over "
+          f"{a.scale_from if a.scale_from else 'the reference in the window'}")
     for name, rows in (("reference", refw), ("run", runw)):
         n, s, nw = cost(rows)
         dts = [r["dt"] for r in rows]
         print(f"  {name:9s} {n:6d} steps  {s:8.0f} s  Newton {nw:6.0f}  dt {min(dts) * 1e3:.3g} - {max(dts) * 1e3:.3g} ms")
     worst = 0.0
-    print(f"  {'column':22s} {'max|ref|':>10s} {'max diff %':>10s} {'rms diff %':>10s} {'end diff %':>10s} {'at ms':>8s}")
+    print(f"  {'column':22s} {'scale':>10s} {'max diff %':>10s} {'rms diff %':>10s} {'end diff %':>10s} {'at ms':>8s}")
     for c in a.columns.split(","):
         if c not in run[0] or c not in ref[0]:
             print(f"  {c:22s} (not in both monitors)")
             continue
-        scale = max(abs(r[c]) for r in refw) or 1.0
+        scale = max(abs(r[c]) for r in scaled if c in r) or 1.0
         d = [abs(r[c] - interp(ref, c, r["time"])) / scale * 100 for r in runw]
         end = abs(runw[-1][c] - interp(ref, c, runw[-1]["time"])) / scale * 100
         rms = math.sqrt(sum(x * x for x in d) / len(d))
