@@ -1,7 +1,7 @@
 """Compare a run's monitor against a reference run over their common time window.
 
   /usr/bin/python3 scripts/compare_runs.py REF_DIR RUN_DIR [--columns c1,c2] [--bound PERCENT]
-                                           [--scale-from DIR,DIR...]
+                                           [--scale-from DIR,DIR...] [--window T0,T1]
 
 For each column: the largest (and when) and the RMS difference |run - ref| at the run's times (the reference
 interpolated linearly), as a percentage of the reference's largest |value| in the window, and the
@@ -53,10 +53,14 @@ def main():
     ap.add_argument("--columns", default=DEFAULT)
     ap.add_argument("--bound", type=float, help="largest difference allowed, %% of max |ref|")
     ap.add_argument("--scale-from", help="runs whose whole monitors give each column's scale")
+    ap.add_argument("--window", help="T0,T1 [s]: compare only inside this window")
     a = ap.parse_args()
     ref, run = load(a.ref), load(a.run)
     t0 = max(ref[0]["time"] - ref[0]["dt"], run[0]["time"] - run[0]["dt"])
     t1 = min(ref[-1]["time"], run[-1]["time"])
+    if a.window:
+        w0, w1 = (float(x) for x in a.window.split(","))
+        t0, t1 = max(t0, w0), min(t1, w1)
     if t1 <= t0:
         sys.exit(f"compare_runs: the runs share no time window ({a.ref}, {a.run})")
     inside = lambda rows: [r for r in rows if t0 + 1e-12 < r["time"] <= t1 + 1e-12]
