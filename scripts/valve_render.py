@@ -1,7 +1,7 @@
 """Rendered pictures of a valve run (pvpython; called by scripts/valve_pictures RESULTS_DIR
 [TIME ...]): leaflets coloured by displacement, velocity magnitude on the mid-plane x = 0, wall
 shear stress on the leaflets, at the fields' times nearest to each TIME [s]; and TAWSS and OSI of every
-closed -hemo_window, seen from the aorta and from the ventricle."""
+closed -hemo_window, the leaflets seen from the aorta and from the ventricle, the root from two sides."""
 import os
 import re
 import sys
@@ -157,28 +157,36 @@ for want in wanted:
                            ImageResolution=[1000, 800])
     print(f"valve_render: pictures at t = {t:.4f} s in {d}")
 
-# Closed time windows (-hemo_window): TAWSS and OSI on the leaflets' material geometry (the
-# nearly closed shape, the same for every remesh's faces), seen from the aorta and the ventricle.
+# Closed time windows (-hemo_window): TAWSS and OSI on each surface's material geometry (the
+# leaflets' nearly closed shape, the same for every remesh's faces): the leaflets seen from the
+# aorta and from the ventricle, any other surface (the root wall) from two sides.
+VIEWS = {"interface": (("aortic", (0, 0, 0.2), (0, 1, 0)), ("ventricular", (0, 0, -0.2), (0, 1, 0)))}
+SIDES = (("side_x", (0.2, 0, 0.01), (0, 0, 1)), ("side_y", (0, -0.2, 0.01), (0, 0, 1)))
 done = set()
 for hx in sorted(f for f in os.listdir(d) if f.endswith("hemo.h5")):
     with h5py.File(os.path.join(d, hx), "r") as h:
-        if "interface" not in h or "material_points" not in h["interface"]:
-            continue
-        for w in (k for k in h["interface"] if k.startswith("window_")):
-            g = h["interface"][w]
-            t0, t1 = (float(x) for x in np.asarray(g["interval"]))
-            if (round(t0, 6), round(t1, 6)) in done:
+        for surf in h:
+            if "material_points" not in h[surf]:
                 continue
-            done.add((round(t0, 6), round(t1, 6)))
-            pts = np.asarray(h["interface/material_points"]).reshape(-1, 3)
-            for array, title, top in (("tawss", "TAWSS [Pa] (top 1% saturated)", None), ("osi", "OSI", 0.5)):
-                val = np.asarray(g[array]).ravel()
-                tp = face_surface(pts, val, array)
-                for name, pos, up in (("aortic", (0, 0, 0.2), (0, 1, 0)), ("ventricular", (0, 0, -0.2), (0, 1, 0))):
-                    v = view()
-                    colour(tp, v, array, title, 0.0, top if top else float(np.percentile(val, 99)))
-                    camera(v, pos, up)
-                    Render(v)
-                    out = f"{array}_{name}_{1000 * t0:.0f}-{1000 * t1:.0f}ms.png"
-                    SaveScreenshot(os.path.join(d, out), v, ImageResolution=[1000, 800])
-            print(f"valve_render: TAWSS and OSI over {t0:.4f}-{t1:.4f} s in {d}")
+            for w in (k for k in h[surf] if k.startswith("window_")):
+                g = h[surf][w]
+                t0, t1 = (float(x) for x in np.asarray(g["interval"]))
+                if (surf, round(t0, 6), round(t1, 6)) in done:
+                    continue
+                done.add((surf, round(t0, 6), round(t1, 6)))
+                pts = np.asarray(h[surf]["material_points"]).reshape(-1, 3)
+                name = "" if surf == "interface" else surf + "_"
+                for array, title, top in (("tawss", "TAWSS [Pa] (top 1% saturated)", None), ("osi", "OSI", 0.5)):
+                    val = np.asarray(g[array]).ravel()
+                    tp = face_surface(pts, val, array)
+                    for side, pos, up in VIEWS.get(surf, SIDES):
+                        v = view()
+                        colour(tp, v, array, title, 0.0, top if top else max(float(np.percentile(val, 99)), 1e-30))
+                        if surf == "interface":
+                            camera(v, pos, up)
+                        else:  # the whole root, annulus to outlet
+                            camera(v, pos, up, focal=(0, 0, 0.012), scale=0.04)
+                        Render(v)
+                        out = f"{name}{array}_{side}_{1000 * t0:.0f}-{1000 * t1:.0f}ms.png"
+                        SaveScreenshot(os.path.join(d, out), v, ImageResolution=[1000, 800])
+                print(f"valve_render: TAWSS and OSI on {surf} over {t0:.4f}-{t1:.4f} s in {d}")
