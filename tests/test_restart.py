@@ -70,6 +70,35 @@ c = W.monitor[-1]["solid_probe0_ux"]
 check(W.code == 0 and abs(c - a) > 1e-3 * abs(a),
       f"rho_inf 0 after the restart changes point M: {c:.6e} vs {a:.6e}")
 
+# The same damping switched by a monitor condition inside one run (-ts_alpha_radius_switch_when,
+# the valve's closure): the axial velocity at the first probe passes 1.1 mm/s in step 4 (0.91 after
+# step 3, 1.35 after step 4), so rho_inf is 0 from step 5, as in the restart above; a restart from
+# a step-6 checkpoint keeps the switched rho_inf.
+sw = ["-ts_alpha_radius_switch_when", "probe0_vz>0.0011", "-ts_alpha_radius_switch_to", "0"]
+X = run(tube, np=2, extra=tight + sw + ["-ts_max_steps", "8"])
+check(X.code == 0 and "(now > 0.0011) at t = 0.0004 s: generalized-alpha rho_inf 0.5 -> 0 from the "
+      "next step" in X.out, "the switch fires after step 4 and says so")
+x = X.monitor[-1]["solid_probe0_ux"] if X.code == 0 else float("nan")
+check(abs(x - c) < 1e-12 * scale, f"switched in the run = restarted with rho_inf 0: {x:.15e} vs {c:.15e}")
+X6 = run(tube, np=2, extra=tight + sw + ["-ts_max_steps", "6", "-checkpoint_every", "6"])
+Y = run(tube, np=2, extra=tight + sw + ["-ts_max_steps", "8", "-restart",
+                                        os.path.join(X6.dir, "checkpoint.h5")])
+y = Y.monitor[-1]["solid_probe0_ux"] if Y.code == 0 else float("nan")
+check(abs(y - x) < 1e-12 * scale, f"a restart after the switch keeps rho_inf 0: {y:.15e} vs {x:.15e}")
+# While the condition holds only (after steps 1-3): rho_inf 0 in steps 2-4, 0.5 again from 5.
+Z = run(tube, np=2, extra=tight + ["-ts_alpha_radius_switch_when", "probe0_vz<0.0011",
+                                   "-ts_max_steps", "5"])
+check(Z.code == 0 and "(now < 0.0011) at t = 0.0001 s: generalized-alpha rho_inf 0.5 -> 0" in Z.out
+      and "(no longer < 0.0011) at t = 0.0004 s: generalized-alpha rho_inf 0 -> 0.5" in Z.out,
+      "rho_inf follows the condition: switched while it holds, back when it does not")
+for bad, words in ((["-ts_alpha_radius_switch_when", "no_column>1"],
+                    "option -ts_alpha_radius_switch_when: the run has no monitor column 'no_column'"),
+                   (["-ts_alpha_radius_switch_when", "probe0_vz>"],
+                    "give a monitor column, < or >, and a number"),
+                   (["-ts_alpha_radius_switch_to", "1.5"], "must be in [0, 1]")):
+    B = run(tube, np=1, extra=tight + bad + ["-ts_max_steps", "1"])
+    check(B.code != 0 and words in B.out and not os.path.exists(os.path.join(B.dir, "summary.json")), f"{bad}: one-line error ({words})")
+
 # Killed while writing the 2nd checkpoint (step 20): the step-10 checkpoint survives.
 K = run(wom, np=2, extra=hemo + ["-checkpoint_every", "10", "-checkpoint_crash_test", "2"])
 ck = os.path.join(K.dir, "checkpoint.h5")

@@ -17,6 +17,7 @@
 // waveform's flow turns forward again (the next systole).  Monitored as <name>_flow_factor
 // (1: the waveform's flow, 0: stopped); the state is kept in checkpoints and rebuilt runs.
 #include "fsi/boundary/boundary_condition.hpp"
+#include "fsi/post/monitor_condition.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -38,11 +39,9 @@ struct FlowRate : BoundaryCondition {
   MPI_Comm comm_;
   std::string pre_;
 
-  // Backflow stop: the condition, its column's index in the monitor row, the latch.
-  std::string stop_column_;
-  char stop_op_ = 0; // '<' or '>'; 0: no stop
-  double stop_value_ = 0, stop_ramp_ = 0.005;
-  long stop_index_ = -1;
+  // Backflow stop: the condition on a monitor column, the ramp, the latch.
+  MonitorCondition stop_;
+  double stop_ramp_ = 0.005;
   bool stopped_ = false;
   double stop_time_ = 0;
   double factor_last_ = 1; // of the last prepared time, monitored
@@ -130,28 +129,10 @@ struct FlowRate : BoundaryCondition {
   }
 
   void read_stop_condition() {
-    const std::string opt_name = pre_ + "stop_backflow_when";
     stop_ramp_ = opt::nonnegative(pre_ + "stop_ramp", 0.005);
-    if (!opt::has(opt_name)) return;
-    const std::string c = opt::required_string(opt_name);
-    const size_t at = c.find_first_of("<>");
-    const std::string bad =
-        "option -" + opt_name + " '" + c +
-        "': give a monitor column, < or >, and a number (e.g. contact_pairs>20)";
-    if (at == std::string::npos || at == 0 || at + 1 >= c.size()) throw InputError(bad);
-    stop_column_ = c.substr(0, at);
-    stop_op_ = c[at];
-    if (!opt::to_real(c.substr(at + 1), stop_value_) || !std::isfinite(stop_value_))
-      throw InputError(bad);
+    stop_ = MonitorCondition::from_option(pre_ + "stop_backflow_when");
   }
-  void bind_monitors(const std::vector<std::string> &columns) override {
-    if (!stop_op_) return;
-    auto it = std::find(columns.begin(), columns.end(), stop_column_);
-    if (it == columns.end())
-      throw InputError("option -" + pre_ + "stop_backflow_when: the run has no monitor column '" +
-                       stop_column_ + "'; its columns: " + opt::join(columns));
-    stop_index_ = it - columns.begin();
-  }
+  void bind_monitors(const std::vector<std::string> &columns) override { stop_.bind(columns); }
   // The waveform's flow times the stop's factor: 1 open, a smooth step down to 0 over the ramp
   // once stopped, back to 1 as soon as the waveform's flow is forward.
   double flow_factor(double t) const {
@@ -161,39 +142,39 @@ struct FlowRate : BoundaryCondition {
     return 1 - x * x * (3 - 2 * x);
   }
   void observe(double t, const std::vector<double> &row) override {
-    if (stop_index_ < 0) return;
+    if (!stop_) return;
     const double q = value_ * wave_(t);
-    double m = row[stop_index_];
-    MPI_Bcast(&m, 1, MPI_DOUBLE, 0, comm_); // one decision on every rank, whatever the column
+    double m = 0;
+    const bool met = stop_.holds(row, comm_, &m);
     if (stopped_ && q > 0) {
       stopped_ = false;
       PetscPrintf(comm_, "  boundary '%s': the flow turns forward at t = %.6g s: inflow on\n",
                   name_.c_str(), t);
-    } else if (!stopped_ && q < 0 && (stop_op_ == '<' ? m < stop_value_ : m > stop_value_)) {
+    } else if (!stopped_ && q < 0 && met) {
       stopped_ = true, stop_time_ = t;
       PetscPrintf(comm_,
                   "  boundary '%s': %s = %g %c %g during backflow at t = %.6g s: the inflow "
                   "stops (ramp %g s)\n",
-                  name_.c_str(), stop_column_.c_str(), m, stop_op_, stop_value_, t, stop_ramp_);
+                  name_.c_str(), stop_.column.c_str(), m, stop_.op, stop_.value, t, stop_ramp_);
     }
   }
   void save_state(std::map<std::string, double> &s) const override {
-    if (!stop_op_) return;
+    if (!stop_) return;
     s[name_ + "_stopped"] = stopped_;
     s[name_ + "_stop_time"] = stop_time_;
   }
   // A state written without the stop (a systole run continued with it) resumes open.
   void restore_state(const std::map<std::string, double> &s) override {
     auto a = s.find(name_ + "_stopped"), b = s.find(name_ + "_stop_time");
-    if (!stop_op_ || a == s.end() || b == s.end()) return;
+    if (!stop_ || a == s.end() || b == s.end()) return;
     stopped_ = a->second != 0, stop_time_ = b->second;
   }
   std::vector<std::string> monitor_columns() const override {
-    if (!stop_op_) return {};
+    if (!stop_) return {};
     return {name_ + "_flow_factor"};
   }
   std::vector<double> monitor_values() const override {
-    if (!stop_op_) return {};
+    if (!stop_) return {};
     return {factor_last_};
   }
 

@@ -62,6 +62,10 @@ const std::vector<Section> &sections() {
          "number of steps (wins over ts_max_time; with -ts_adapt_type error: the last step)"},
         {"ts_max_time", "", "s", "end time (a whole number of steps)"},
         {"ts_alpha_radius", "0.5", "-", "spectral radius rho_inf in [0, 1]"},
+        {"ts_alpha_radius_switch_when", "", "-",
+         "COLUMN<VALUE or COLUMN>VALUE on a monitor.csv column: after a step where it holds "
+         "rho_inf is -ts_alpha_radius_switch_to, after one where it does not -ts_alpha_radius"},
+        {"ts_alpha_radius_switch_to", "0", "-", "rho_inf after the switch, in [0, 1]"},
         {"ts_adapt_type", "cut", "-",
          "cut: retry a failed step with a smaller dt | error: also choose dt by a local error "
          "estimate (PI controller) | none"},

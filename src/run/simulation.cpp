@@ -1,9 +1,11 @@
 #include "fsi/run/simulation.hpp"
+
 #include "fsi/physics/interface_flux.hpp"
 #include "fsi/physics/material.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace fsi {
 
@@ -73,6 +75,9 @@ Simulation::Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &
     FSI_CALL(VecCopy(time_->velocity(), U_));
     wss_.load(*state);
     bcs_->restore_state(state->lumped);
+    auto sw = state->lumped.find("rho_inf_switched");
+    if (rho_switch_ && sw != state->lumped.end() && sw->second != 0)
+      rho_switched_ = true, time_->set_rho_inf(rho_switch_to_);
   }
 }
 
@@ -170,6 +175,16 @@ void Simulation::build_physics(const Mesh &mesh) {
     fields_ = std::make_unique<FieldWriter>(space_, out_.dir, set);
   }
   bcs_->bind_monitors(monitor_columns());
+  // More numerical damping while a monitor condition holds (the valve closed: its pressed leaflets
+  // would ring at rho_inf 0.5; docs/valve.md).
+  rho_switch_ = MonitorCondition::from_option("ts_alpha_radius_switch_when");
+  rho_switch_to_ = opt::real("ts_alpha_radius_switch_to", 0.0);
+  if (rho_switch_to_ < 0 || rho_switch_to_ > 1)
+    throw InputError(
+        "option -ts_alpha_radius_switch_to (spectral radius rho_inf) must be in [0, 1]");
+  if (rho_switch_ && scene_.time.steady)
+    throw InputError("option -ts_alpha_radius_switch_when needs -ts_type alpha");
+  rho_switch_.bind(monitor_columns());
 }
 
 // Initial state at t = 0: rest, a uniform velocity, or the exact flow (-ic rest|velocity|exact).
@@ -440,6 +455,22 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
     wss_.write_instantaneous(step_index(), time());
   }
   bcs_->observe(time(), row); // a flow that stops when the valve has closed
+  if (rho_switch_) {          // rho_inf follows the condition: the switched value while it holds
+    double m = 0;
+    const bool on = rho_switch_.holds(row, PetscObjectComm((PetscObject)space_.dm), &m);
+    if (on != rho_switched_) {
+      const double r = on ? rho_switch_to_ : scene_.time.rho_inf;
+      char msg[256]; // snprintf: PETSc's printf would write the value 0 as "0."
+      std::snprintf(msg, sizeof msg,
+                    "fsi_app: %s = %g (%s %c %g) at t = %.6g s: generalized-alpha rho_inf %g -> %g "
+                    "from the next step\n",
+                    rho_switch_.column.c_str(), m, on ? "now" : "no longer", rho_switch_.op,
+                    rho_switch_.value, time(), time_->params().rho_inf, r);
+      PetscPrintf(PetscObjectComm((PetscObject)space_.dm), "%s", msg);
+      rho_switched_ = on;
+      time_->set_rho_inf(r);
+    }
+  }
   return row;
 }
 
@@ -458,6 +489,7 @@ RunState Simulation::capture() const {
                  ale_->displacement(), material_X_, s);
   wss_.save(s);
   bcs_->save_state(s.lumped);
+  if (rho_switch_) s.lumped["rho_inf_switched"] = rho_switched_;
   return s;
 }
 

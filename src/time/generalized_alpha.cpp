@@ -43,13 +43,7 @@ TimeParams TimeParams::from_options() {
 
 GeneralizedAlpha::GeneralizedAlpha(const Space &space, const TimeParams &tp)
     : space_(space), tp_(tp), dt_(tp.dt) {
-  if (!tp.steady) {
-    const double r = tp.rho_inf;
-    alpha_m_ = (3 - r) / (2 * (1 + r));
-    alpha_f_ = 1 / (1 + r);
-    gamma_ = 0.5 + alpha_m_ - alpha_f_;
-    beta_ = 0.25 * (1 + alpha_m_ - alpha_f_) * (1 + alpha_m_ - alpha_f_);
-  }
+  if (!tp.steady) set_rho_inf(tp.rho_inf);
   Vn_ = space.create_global();
   FSI_CALL(VecDuplicate(Vn_, &An_));
   FSI_CALL(VecDuplicate(Vn_, &Dn_));
@@ -57,6 +51,17 @@ GeneralizedAlpha::GeneralizedAlpha(const Space &space, const TimeParams &tp)
   Vloc_ = space.create_local();
   FSI_CALL(VecDuplicate(Vloc_, &Aloc_));
   FSI_CALL(VecDuplicate(Vloc_, &Dloc_));
+}
+
+// Jansen-Whiting-Hulbert parameters for the first-order (velocity) system, Newmark's beta for
+// the displacement; the history (V_n, A_n, D_n) does not depend on them, so they may change
+// between steps.
+void GeneralizedAlpha::set_rho_inf(double r) {
+  tp_.rho_inf = r;
+  alpha_m_ = (3 - r) / (2 * (1 + r));
+  alpha_f_ = 1 / (1 + r);
+  gamma_ = 0.5 + alpha_m_ - alpha_f_;
+  beta_ = 0.25 * (1 + alpha_m_ - alpha_f_) * (1 + alpha_m_ - alpha_f_);
 }
 
 GeneralizedAlpha::~GeneralizedAlpha() {

@@ -19,6 +19,7 @@
 #include "fsi/physics/fluid.hpp"
 #include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/solid.hpp"
+#include "fsi/post/monitor_condition.hpp"
 #include "fsi/post/monitors.hpp"
 #include "fsi/post/solid_monitors.hpp"
 #include "fsi/post/valve_monitors.hpp"
@@ -129,6 +130,10 @@ private:
   const GapSeal *seal_ = nullptr;
   std::unique_ptr<Boundaries> bcs_;
   std::unique_ptr<GeneralizedAlpha> time_;
+  // -ts_alpha_radius_switch_when: rho_inf is rho_switch_to_ after steps where the condition holds.
+  MonitorCondition rho_switch_;
+  double rho_switch_to_ = 0;
+  bool rho_switched_ = false;
   std::unique_ptr<Ale> ale_;
   std::unique_ptr<CoupledSystem> system_;
   std::unique_ptr<Checkpoint> keys_;

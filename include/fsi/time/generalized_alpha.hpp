@@ -40,6 +40,8 @@ public:
   double dt() const { return dt_; }
   void set_dt(double dt) { dt_ = dt; }
   double alpha_f() const { return alpha_f_; }
+  // Numerical damping from the next step on (the scheme's spectral radius rho_inf in [0, 1]).
+  void set_rho_inf(double rho_inf);
   // t_{n+alpha_f} of the step being solved (t_{n+1} in static mode).
   double stage_time() const { return tp_.steady ? t_ + dt_ : t_ + alpha_f_ * dt_; }
 
