@@ -11,21 +11,19 @@ peaks).  Prints both runs' cost in the window (steps, wall seconds, Newton).
 With --bound, exits 1 when a column's largest difference passes the bound: the check that an
 adaptive-step run stays within a stated tolerance of a fixed small-step one (docs/valve.md)."""
 import argparse
-import csv
 import math
-import os
 import sys
+
+from run_pieces import read_rows
 
 DEFAULT = "valve_goa_ratio,valve_dp,valve_leaflet_umax,solid_probe0_uz,inlet_p,probe0_vz,energy_kinetic"
 
 
 def load(d):
-    f = os.path.join(d, "monitor.csv")
-    if not os.path.exists(f):
-        f += ".partial"
-    if not os.path.exists(f):
-        sys.exit(f"compare_runs: no monitor.csv in {d}")
-    return [{k: float(v) for k, v in r.items() if v != ""} for r in csv.DictReader(open(f))]
+    rows = read_rows(d)
+    if not rows:
+        sys.exit(f"compare_runs: no rows in {d}/monitor.csv")
+    return rows
 
 
 def interp(rows, c, t):

@@ -3,7 +3,6 @@
 Several DIRs are one run's pieces (each continued from the previous one's checkpoint by
 -restart): their rows are joined in time, a later piece replacing an earlier one from its first
 time on; the picture goes to the last DIR."""
-import csv
 import os
 import sys
 
@@ -12,20 +11,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from run_pieces import read_rows, stitch
+
 dirs = sys.argv[1:]
 if not dirs:
     sys.exit("usage: valve_history.py DIR [DIR ...]")
-rows = []
 for d in dirs:
-    f = os.path.join(d, "monitor.csv")
-    if not os.path.exists(f):
-        f += ".partial"  # a piece still running, or stopped
-    if not os.path.exists(f):
-        sys.exit(f"valve_history: no monitor.csv in {d}")
-    piece = list(csv.DictReader(open(f)))
-    if piece:
-        start = float(piece[0]["time"])
-        rows = [r for r in rows if float(r["time"]) < start - 1e-12] + piece
+    if not read_rows(d):
+        sys.exit(f"valve_history: no rows in {d}/monitor.csv")
+rows = stitch([read_rows(d) for d in dirs], "time")
 if not rows:
     sys.exit("valve_history: monitor.csv has no rows")
 col = lambda c, s=1.0: [s * float(r[c]) for r in rows]
@@ -53,6 +47,6 @@ for a in ax:
     a.grid(True, alpha=0.3)
 fig.suptitle(" + ".join(os.path.basename(os.path.normpath(x)) for x in dirs))
 fig.tight_layout()
-out = os.path.join(d, "valve_history.png")
+out = os.path.join(dirs[-1], "valve_history.png")
 fig.savefig(out, dpi=110)
 print("wrote", out)

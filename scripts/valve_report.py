@@ -8,28 +8,11 @@ starts, the earlier one's rows stop.  Prints (markdown)
     volume through the inlet, and their ratio;
   - cost: steps, cut steps, s/step, Newton and Krylov per step, remeshes and their share of the
     wall time, peak memory per rank."""
-import csv
 import json
 import os
 import sys
 
-
-def read_rows(d, name):
-    for f in (name, name + ".partial"):
-        p = os.path.join(d, f)
-        if os.path.exists(p):
-            return [{k: float(v) for k, v in r.items() if v not in ("", None)} for r in csv.DictReader(open(p))]
-    return []
-
-
-def stitch(pieces, key):
-    """Rows of consecutive pieces; a piece's rows stop where the next piece starts (by step)."""
-    out = []
-    for i, rows in enumerate(pieces):
-        nxt = next((p for p in pieces[i + 1:] if p), None)
-        stop = nxt[0][key] if nxt else float("inf")
-        out += [r for r in rows if r[key] < stop]
-    return out
+from run_pieces import read_rows, stitch
 
 
 args = sys.argv[1:]
