@@ -57,7 +57,10 @@ def main():
     t0 = max(ref[0]["time"] - ref[0]["dt"], run[0]["time"] - run[0]["dt"])
     t1 = min(ref[-1]["time"], run[-1]["time"])
     if a.window:
-        w0, w1 = (float(x) for x in a.window.split(","))
+        try:
+            w0, w1 = (float(x) for x in a.window.split(","))
+        except ValueError:
+            sys.exit(f"compare_runs: --window '{a.window}': give two times in seconds, T0,T1")
         t0, t1 = max(t0, w0), min(t1, w1)
     if t1 <= t0:
         sys.exit(f"compare_runs: the runs share no time window ({a.ref}, {a.run})")
