@@ -66,6 +66,8 @@ const std::vector<Section> &sections() {
          "COLUMN<VALUE or COLUMN>VALUE on a monitor.csv column: after a step where it holds "
          "rho_inf is -ts_alpha_radius_switch_to, after one where it does not -ts_alpha_radius"},
         {"ts_alpha_radius_switch_to", "0", "-", "rho_inf after the switch, in [0, 1]"},
+        {"ts_predictor", "constant", "-",
+         "Newton's first iterate: constant (V_n) | extrapolated (V_n + dt A_n)"},
         {"ts_adapt_type", "cut", "-",
          "cut: retry a failed step with a smaller dt | error: also choose dt by a local error "
          "estimate (PI controller) | none"},

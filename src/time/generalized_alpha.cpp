@@ -17,6 +17,8 @@ TimeParams TimeParams::from_options() {
     return tp;
   }
   tp.dt = opt::positive("ts_dt", 1e-3);
+  tp.extrapolate =
+      opt::choice("ts_predictor", "constant", {"constant", "extrapolated"}) == "extrapolated";
   tp.rho_inf = opt::real("ts_alpha_radius", 0.5);
   if (tp.rho_inf < 0 || tp.rho_inf > 1)
     throw InputError("option -ts_alpha_radius (spectral radius rho_inf) must be in [0, 1]");
@@ -74,6 +76,7 @@ void GeneralizedAlpha::predict(Vec U) {
   space_.to_local(An_, Aloc_);
   space_.to_local(Dn_, Dloc_);
   FSI_CALL(VecCopy(Vn_, U));
+  if (tp_.extrapolate && !tp_.steady) FSI_CALL(VecAXPY(U, dt_, An_));
 }
 
 void GeneralizedAlpha::fill_context(StepContext &ctx) const {

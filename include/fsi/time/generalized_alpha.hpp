@@ -24,6 +24,10 @@ struct TimeParams {
   // With error-controlled steps (-ts_adapt_type error) the step count is not known from dt:
   // -ts_max_steps given with -ts_max_time then stops the run after that step (0: no cap).
   long step_cap = 0;
+  // Newton's first iterate: V_n (constant, the default) or V_n + dt A_n (extrapolated,
+  // -ts_predictor extrapolated): first order in dt closer, so that one Newton iteration can meet a
+  // relative tolerance that two needed.
+  bool extrapolate = false;
   static TimeParams from_options();
 };
 
@@ -51,7 +55,7 @@ public:
   Vec displacement() const { return Dn_; }
   void set_time(double t, long n) { t_ = t, n_ = n; }
 
-  // Start of a step: local copies of the history and the predictor U = V_n.
+  // Start of a step: local copies of the history and the predictor U = V_n (or V_n + dt A_n).
   void predict(Vec U);
   // Time part of the kernels' context for the step t_n -> t_n + dt (history arrays included).
   void fill_context(StepContext &ctx) const;
