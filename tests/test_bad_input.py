@@ -25,6 +25,7 @@ cases = [
     ("mesh without the fluid region", ["-fluid_region", "blood"], "blood"),
     ("zero time step", ["-ts_type", "alpha", "-ts_dt", "0"], "ts_dt"),
     ("negative time step", ["-ts_type", "alpha", "-ts_dt", "-1e-3"], "ts_dt"),
+    ("unknown predictor", ["-ts_type", "alpha", "-ts_predictor", "quadratic"], "quadratic"),
     ("wall shear on a missing surface", ["-hemo_surfaces", "aorta"], "aorta"),
     ("negative checkpoint interval", ["-checkpoint_every", "-1"], "checkpoint_every"),
     ("missing restart file", ["-restart", "/nonexistent/checkpoint.h5"], "/nonexistent/checkpoint.h5"),

@@ -41,13 +41,15 @@ check(const.code == 0, "tube: the fast preset with the constant predictor runs")
 if ref.code == 0 and fast.code == 0 and exact.code == 0:
     ux = [max(abs(r["solid_probe0_ux"]) for r in x.monitor) for x in (ref, fast)]
     rel = abs(ux[0] - ux[1]) / ux[0]
-    print(f"tube: point M's largest displacement, fast preset against the converged one: {rel:.1e}")
+    # One Newton iteration from V_n + dt A_n stops just under the 1e-4 residual: a larger, still
+    # small, error than two from V_n (the bound on u_M is 0.2 %).
+    check(rel < 1e-3, f"tube: point M's largest displacement within {rel:.1e} of the converged one (< 1e-3)")
     k_fast, k_exact = (x.summary["iterations"]["krylov_total"] for x in (fast, exact))
     check(k_fast < 0.8 * k_exact,
           f"tube: inexact Newton takes fewer Krylov iterations ({k_fast} against {k_exact})")
     # Newton's first iterate V_n + dt A_n (the preset's -ts_predictor extrapolated) against V_n
-    # (measured: 32 Newton iterations in 30 steps against 60; point M within 1.0e-4 of the
-    # converged answer against 1.5e-5 with V_n).
+    # (measured: 32 Newton iterations in 30 steps against 60; point M within 1.0-1.2e-4 of the
+    # converged answer against 1.5e-5-2.9e-5 with V_n, depending on the partition).
     if const.code == 0:
         n_ext, n_const = (x.summary["iterations"]["newton_total"] for x in (fast, const))
         check(n_ext < 0.6 * n_const,
@@ -56,9 +58,6 @@ if ref.code == 0 and fast.code == 0 and exact.code == 0:
         rel_c = abs(ux[0] - ux_c) / ux[0]
         check(rel_c < 1e-4,
               f"tube: with V_n, point M's largest displacement agrees with the converged one ({rel_c:.1e})")
-        # One Newton iteration stops just under the 1e-4 residual: a larger, still small, error
-        # (the bound on u_M is 0.2 %).
-        check(rel < 1e-3, f"tube: with V_n + dt A_n, to {rel:.1e} (< 1e-3)")
 
 # A lagged LU (direct_lagged: MUMPS reused by GMRES over steps) rebuilt whenever a linear solve
 # took more than 3 Krylov iterations (-newton_pc_rebuild_krylov): the rebuilds happen, GMRES

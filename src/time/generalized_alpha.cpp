@@ -76,7 +76,7 @@ void GeneralizedAlpha::predict(Vec U) {
   space_.to_local(An_, Aloc_);
   space_.to_local(Dn_, Dloc_);
   FSI_CALL(VecCopy(Vn_, U));
-  if (tp_.extrapolate && !tp_.steady) FSI_CALL(VecAXPY(U, dt_, An_));
+  if (tp_.extrapolate) FSI_CALL(VecAXPY(U, dt_, An_));
 }
 
 void GeneralizedAlpha::fill_context(StepContext &ctx) const {
