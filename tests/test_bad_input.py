@@ -26,6 +26,7 @@ cases = [
     ("zero time step", ["-ts_type", "alpha", "-ts_dt", "0"], "ts_dt"),
     ("negative time step", ["-ts_type", "alpha", "-ts_dt", "-1e-3"], "ts_dt"),
     ("unknown predictor", ["-ts_type", "alpha", "-ts_predictor", "quadratic"], "quadratic"),
+    ("unknown convection form", ["-fluid_convection", "rotational"], "rotational"),
     ("wall shear on a missing surface", ["-hemo_surfaces", "aorta"], "aorta"),
     ("negative checkpoint interval", ["-checkpoint_every", "-1"], "checkpoint_every"),
     ("missing restart file", ["-restart", "/nonexistent/checkpoint.h5"], "/nonexistent/checkpoint.h5"),

@@ -13,6 +13,8 @@ FluidParams FluidParams::from_options() {
   p.rho = opt::positive("fluid_rho", p.rho);
   p.mu = opt::positive("fluid_mu", p.mu);
   p.stokes = opt::choice("fluid_model", "navier_stokes", {"navier_stokes", "stokes"}) == "stokes";
+  p.skew = opt::choice("fluid_convection", "convective", {"convective", "skew_symmetric"}) ==
+           "skew_symmetric";
   p.quad_degree = (int)opt::integer("fluid_quad_degree", 4);
   p.direct_insertion = opt::flag("fluid_direct_insertion", true);
   if (p.quad_degree < 2 || p.quad_degree > 10)
@@ -91,7 +93,7 @@ void FluidModule::gather(const StepContext &ctx, PetscInt k, Element &e) const {
 
 void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
   const double rho = p_.rho, mu = p_.mu;
-  const bool conv = !p_.stokes;
+  const bool conv = !p_.stokes, skew = conv && p_.skew;
   Element e;
   for (PetscInt k : cells_) {
     gather(ctx, k, e);
@@ -119,11 +121,14 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
           w[i] += l[b] * e.w[b][i];
       }
       double f[3], tau[3][3];
+      const double half_div = skew ? 0.5 * (G[0][0] + G[1][1] + G[2][2]) : 0.0;
       for (int i = 0; i < 3; ++i) {
         f[i] = rho * a[i];
-        if (conv)
+        if (conv) {
           for (int j = 0; j < 3; ++j)
             f[i] += rho * G[i][j] * (v[j] - w[j]);
+          f[i] += rho * half_div * v[i];
+        }
         for (int j = 0; j < 3; ++j)
           tau[i][j] = mu * (G[i][j] + G[j][i]);
         tau[i][i] -= p;
@@ -152,7 +157,7 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
 //   N_a (c . grad N_b) is summed over the residual's rule.
 void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
   const double rho = p_.rho, mu = p_.mu;
-  const bool conv = !p_.stokes;
+  const bool conv = !p_.stokes, skew = conv && p_.skew;
   const double cm = ctx.mass_shift(), cf = ctx.stiff_shift();
   const std::vector<char> &bc = *ctx.is_dirichlet;
   constexpr int n = 34; // 30 velocity + 4 pressure rows/columns
@@ -223,6 +228,24 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
         double cg[10];
         for (int b = 0; b < 10; ++b)
           cg[b] = cv[0] * dN[b][0] + cv[1] * dN[b][1] + cv[2] * dN[b][2];
+        if (skew) {
+          // rho/2 [(div dv) v + (div v) dv]: v = c + w, so rebuild v from the nodal values.
+          double v[3] = {}, div = 0;
+          for (int b = 0; b < 10; ++b)
+            for (int i = 0; i < 3; ++i) {
+              v[i] += N[b] * e.v[b][i];
+              div += e.v[b][i] * dN[b][i];
+            }
+          for (int b = 0; b < 10; ++b)
+            cg[b] += 0.5 * div * N[b];
+          for (int a = 0; a < 10; ++a)
+            for (int i = 0; i < 3; ++i) {
+              const double t = 0.5 * s * N[a] * v[i];
+              for (int j = 0; j < 3; ++j)
+                for (int b = 0; b < 10; ++b)
+                  E[i][j][a][b] += t * dN[b][j];
+            }
+        }
         for (int a = 0; a < 10; ++a) {
           const double t = s * N[a];
           for (int b = 0; b < 10; ++b)

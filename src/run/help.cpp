@@ -88,6 +88,8 @@ const std::vector<Section> &sections() {
         {"fluid_rho", "1000", "kg/m^3", "density"},
         {"fluid_mu", "0.003", "Pa s", "dynamic viscosity"},
         {"fluid_model", "navier_stokes", "-", "navier_stokes | stokes (no convection)"},
+        {"fluid_convection", "convective", "-",
+         "convective | skew_symmetric (+ rho/2 (div v) v: energy-stable convection)"},
         {"fluid_quad_degree", "4", "-", "quadrature degree"},
         {"fluid_direct_insertion", "true", "-", "element matrices straight into the AIJ arrays"}}},
       {"Solid (-physics solid)",

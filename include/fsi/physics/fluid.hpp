@@ -7,7 +7,10 @@
 // -fluid_):
 //   region NAME (physical volume, default "fluid"), rho [kg/m^3], mu [Pa s],
 //   model navier_stokes|stokes (stokes skips convection), quad_degree (default 4),
-//   direct_insertion (default true; false = MatSetValuesLocal, for checking).
+//   convection convective|skew_symmetric (skew_symmetric adds Temam's rho/2 (div v) v, zero for
+//   the exact solution: Taylor-Hood's velocity is only weakly divergence-free, and without it
+//   convection can feed kinetic energy into an under-resolved flow), direct_insertion (default
+//   true; false = MatSetValuesLocal, for checking).
 #pragma once
 #include "fsi/discretization/element_assembler.hpp"
 #include "fsi/discretization/p2tet.hpp"
@@ -21,6 +24,7 @@ struct FluidParams {
   std::string region = "fluid";
   double rho = 1000, mu = 0.003;
   bool stokes = false;
+  bool skew = false; // Temam's skew-symmetric convection
   int quad_degree = 4;
   bool direct_insertion = true; // element matrices straight into the AIJ arrays
   static FluidParams from_options();
