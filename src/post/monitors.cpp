@@ -26,6 +26,8 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
 
   volume_ = opt::flag("monitor_fluid_volume", false);
   if (volume_ && !fluid) throw InputError("-monitor_fluid_volume needs a fluid in the scene");
+  energy_ = opt::flag("monitor_fluid_energy", false);
+  if (energy_ && !fluid) throw InputError("-monitor_fluid_energy needs a fluid in the scene");
   for (auto &x : parse_points("probe_points")) {
     if (!fluid) throw InputError("-probe_points needs a fluid (solid points: -solid_probe_points)");
     PointLocation loc = locate_point(space, fluid->cells(), x.data());
@@ -60,6 +62,9 @@ std::vector<std::string> Monitors::columns() const {
     for (auto q : {"err_v_l2", "err_p_l2", "err_v_rel", "err_p_rel"})
       c.push_back(q);
   if (volume_) c.push_back("fluid_volume");
+  if (energy_)
+    for (auto q : {"fluid_energy_kinetic", "fluid_dissipation", "fluid_convective_power"})
+      c.push_back(q);
   return c;
 }
 
@@ -120,6 +125,44 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
   e.p_l2 = std::sqrt(std::max(ep2, 0.0));
   e.p_norm = std::sqrt(std::max(p2, 0.0));
   return e;
+}
+
+// Kinetic energy, viscous dissipation and convective power of this rank's cells (sums in e[3]);
+// degree 6: |v|^2 (div v) is degree 5 on straight-sided P2 cells.
+void Monitors::energy(const PetscScalar *u, const std::vector<double> &Xc, double e[3]) const {
+  static const QuadRule rule = tet_rule(6);
+  const double rho = fluid_->params().rho, mu = fluid_->params().mu;
+  for (PetscInt k : fluid_->cells()) {
+    double X[4][3], ve[10][3];
+    for (int i = 0; i < 4; ++i)
+      for (int d = 0; d < 3; ++d)
+        X[i][d] = Xc[3 * space_->cell_vertex[4 * k + i] + d];
+    for (int a = 0; a < 10; ++a)
+      for (int d = 0; d < 3; ++d)
+        ve[a][d] = PetscRealPart(u[space_->cell_vdof[10 * k + a] + d]);
+    TetGeometry g;
+    g.set(X);
+    for (size_t q = 0; q < rule.weight.size(); ++q) {
+      double N[10], dN[10][3], v[3] = {0, 0, 0}, G[3][3] = {};
+      p2_tet(rule.lambda[q].data(), g.grad_lambda, N, dN);
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i) {
+          v[i] += N[a] * ve[a][i];
+          for (int j = 0; j < 3; ++j)
+            G[i][j] += ve[a][i] * dN[a][j];
+        }
+      const double w = rule.weight[q] * g.absdet, v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      double dd = 0;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const double s = 0.5 * (G[i][j] + G[j][i]);
+          dd += s * s;
+        }
+      e[0] += w * 0.5 * rho * v2;
+      e[1] += w * 2 * mu * dd;
+      e[2] += w * 0.5 * rho * (G[0][0] + G[1][1] + G[2][2]) * v2;
+    }
+  }
 }
 
 std::vector<double> Monitors::evaluate(const Simulation &pb) {
@@ -227,6 +270,12 @@ std::vector<double> Monitors::evaluate(const Simulation &pb) {
     }
     MPI_Allreduce(&vol, &gvol, 1, MPI_DOUBLE, MPI_SUM, comm_);
     out.push_back(gvol);
+  }
+  if (energy_) {
+    double e[3] = {0, 0, 0}, g[3];
+    energy(u, Xc, e);
+    MPI_Allreduce(e, g, 3, MPI_DOUBLE, MPI_SUM, comm_);
+    out.insert(out.end(), g, g + 3);
   }
   FSI_CALL(VecRestoreArrayRead(loc, &u));
   FSI_CALL(VecDestroy(&loc));

@@ -4,6 +4,10 @@
 //                           mean pressure [Pa], all on the current (deformed) configuration;
 //   -probe_points x,y,z;... velocity and pressure at points of the reference mesh;
 //   -monitor_fluid_volume   the fluid's volume on the current mesh [m^3];
+//   -monitor_fluid_energy   kinetic energy int rho/2 |v|^2 [J], viscous dissipation
+//                           int 2 mu D(v):D(v) [W] and the power the convective form puts in,
+//                           int rho/2 (div v)|v|^2 [W] (weakly divergence-free velocity; the
+//                           skew-symmetric form cancels it), on the current mesh;
 //   with -exact_solution: L2 errors of velocity (at t_{n+1}) and pressure (at t_{n+alpha_f}, where
 //   the generalized-alpha pressure lives; up to its mean where the flow does not fix the level)
 //   and, at probes, the exact velocity.
@@ -37,6 +41,7 @@ private:
     PetscInt cell = -1;    // local cell index on the owner
     double lambda[4] = {}; // barycentric coordinates in that cell
   };
+  void energy(const PetscScalar *u, const std::vector<double> &Xc, double e[3]) const;
   ErrorNorms errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
                     const std::vector<double> &Xp, double tp) const;
   const Space *space_ = nullptr;
@@ -46,7 +51,7 @@ private:
   std::vector<std::vector<BoundaryFace>> surf_faces_;
   std::vector<Probe> probes_;
   ErrorNorms err_;
-  bool volume_ = false;
+  bool volume_ = false, energy_ = false;
   MPI_Comm comm_ = MPI_COMM_NULL;
 };
 
