@@ -216,11 +216,14 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
       // rho N_a (c . grad N_b), c = v - w, on the residual's rule.
       for (size_t q = 0; q < rule_.weight.size(); ++q) {
         const double *l = rule_.lambda[q].data(), *N = N_[q].data();
-        double dN[10][3], Nd[10], cv[3] = {};
+        double dN[10][3], Nd[10], v[3] = {}, div = 0;
         p2_tet(l, g, Nd, dN);
         for (int b = 0; b < 10; ++b)
-          for (int i = 0; i < 3; ++i)
-            cv[i] += N[b] * e.v[b][i];
+          for (int i = 0; i < 3; ++i) {
+            v[i] += N[b] * e.v[b][i];
+            div += e.v[b][i] * dN[b][i];
+          }
+        double cv[3] = {v[0], v[1], v[2]};
         for (int b = 0; b < 4; ++b)
           for (int i = 0; i < 3; ++i)
             cv[i] -= l[b] * e.w[b][i];
@@ -229,13 +232,7 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
         for (int b = 0; b < 10; ++b)
           cg[b] = cv[0] * dN[b][0] + cv[1] * dN[b][1] + cv[2] * dN[b][2];
         if (skew) {
-          // rho/2 [(div dv) v + (div v) dv]: v = c + w, so rebuild v from the nodal values.
-          double v[3] = {}, div = 0;
-          for (int b = 0; b < 10; ++b)
-            for (int i = 0; i < 3; ++i) {
-              v[i] += N[b] * e.v[b][i];
-              div += e.v[b][i] * dN[b][i];
-            }
+          // rho/2 [(div dv) v + (div v) dv]
           for (int b = 0; b < 10; ++b)
             cg[b] += 0.5 * div * N[b];
           for (int a = 0; a < 10; ++a)
