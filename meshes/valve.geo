@@ -22,6 +22,16 @@
 //   hbase    element size along the leaflets' attachment to the root (default: h, no band),
 //            where the opening leaflet bends most: at h = 1.5 mm the thin elements there
 //            invert when the valve is half open; hbasew the width of that band (default 2 mm)
+//   coapt    coaptation height: each leaflet's free edge carries a band of this height
+//            (default 0: none) standing up into the aortic side along its dividing plane, flush
+//            with the free edge, so that the closed valve's neighbouring bands face each other
+//            across the gap and the aortic pressure presses them together (a lunula) instead
+//            of pushing the nearly horizontal free edges down into the ventricle
+//   post     radial depth of three commissural posts (default 0: none): rigid wall strips
+//            filling the gap between neighbouring leaflets within this distance of the root
+//            wall, from the annulus to the commissure height (the interleaflet triangles and
+//            commissures of a real root), so that the leaflets' free edges are attached there
+//            and the clamped edges leave no slit along the wall for a closed valve to leak by
 //   hcenter  element size within hcenterw of the axis from the annulus to the commissures
 //            (default: h, no refinement), where the three free edges meet when the valve closes
 // Leaflet k (k = 0, 1, 2, centre angle 90 + 120 k degrees) is the shell of thickness t about an
@@ -47,6 +57,14 @@ If (!Exists(hfar)) hfar = 4 * h; EndIf
 If (!Exists(hgrow)) hgrow = 0.008; EndIf
 If (!Exists(tlayers)) tlayers = 1; EndIf
 If (!Exists(hbasew)) hbasew = 0.002; EndIf
+If (!Exists(coapt)) coapt = 0; EndIf
+If (!Exists(post)) post = 0; EndIf
+If (post < 0)
+  Error("valve.geo: post (the commissural posts' depth) must be >= 0");
+EndIf
+If (coapt < 0)
+  Error("valve.geo: coapt (the coaptation height) must be >= 0");
+EndIf
 // (gmsh's parser evaluates both sides of || and &&, so hbase is tested in its own If)
 If (h <= 0 || hbasew <= 0)
   Error("valve.geo: the sizes h, hbase and hbasew must be positive");
@@ -93,6 +111,15 @@ If (sinus)
   EndFor
   fluid() = BooleanUnion{ Volume{1}; Delete; }{ Volume{10, 11, 12}; Delete; };
 EndIf
+If (post > 0)
+  // Post k: the gap strip about the dividing plane at 30 + 120 k degrees, within post of the
+  // wall (and beyond it, through the sinus-free wall there), from the annulus to zc.
+  For k In {0:2}
+    Box(15 + k) = {-gap / 2, Ra - post, 0, gap, post + Ra, zc};
+    Rotate {{0, 0, 1}, {0, 0, 0}, -Pi / 3 + 2 * Pi * k / 3} { Volume{15 + k}; }
+  EndFor
+  fluid() = BooleanDifference{ Volume{fluid()}; Delete; }{ Volume{15, 16, 17}; Delete; };
+EndIf
 
 // Leaflets.
 leaf() = {};
@@ -105,8 +132,30 @@ For k In {0:2}
   Sphere(21 + 10 * k) = {0, 0, 0, 1};
   Dilate {{0, 0, 0}, {ri, ri, stretch * rho_l - t / 2}} { Volume{21 + 10 * k}; }
   shell() = BooleanDifference{ Volume{20 + 10 * k}; Delete; }{ Volume{21 + 10 * k}; Delete; };
+  If (coapt > 0)
+    // The band: from the leaflet's lower face to coapt above its upper face (inside the outer
+    // ellipsoid, outside the inner one raised by coapt), within a slab of thickness t on the
+    // sector side of each dividing plane (clipped to the sector below with the shell).
+    Sphere(26 + 10 * k) = {0, 0, 0, 1};
+    Dilate {{0, 0, 0}, {ro, ro, stretch * rho_l + t / 2}} { Volume{26 + 10 * k}; }
+    Sphere(27 + 10 * k) = {0, 0, 0, 1};
+    Dilate {{0, 0, 0}, {ri, ri, stretch * rho_l - t / 2}} { Volume{27 + 10 * k}; }
+    Translate {0, 0, coapt} { Volume{27 + 10 * k}; }
+    band() = BooleanDifference{ Volume{26 + 10 * k}; Delete; }{ Volume{27 + 10 * k}; Delete; };
+    Translate {Ra, 0, zc} { Volume{band()}; }
+    Rotate {{0, 0, 1}, {0, 0, 0}, th} { Volume{band()}; }
+    Box(28 + 10 * k) = {gap / 2, -big, -Lin, t, 2 * big, zc + Lin};
+    Rotate {{0, 0, 1}, {0, 0, 0}, th + Pi / 3 - Pi / 2} { Volume{28 + 10 * k}; }
+    Box(29 + 10 * k) = {gap / 2, -big, -Lin, t, 2 * big, zc + Lin};
+    Rotate {{0, 0, 1}, {0, 0, 0}, th - Pi / 3 + Pi / 2} { Volume{29 + 10 * k}; }
+    slabs() = BooleanUnion{ Volume{28 + 10 * k}; Delete; }{ Volume{29 + 10 * k}; Delete; };
+    fins() = BooleanIntersection{ Volume{band()}; Delete; }{ Volume{slabs()}; Delete; };
+  EndIf
   Translate {Ra, 0, zc} { Volume{shell()}; }
   Rotate {{0, 0, 1}, {0, 0, 0}, th} { Volume{shell()}; }
+  If (coapt > 0)
+    shell() = BooleanUnion{ Volume{shell()}; Delete; }{ Volume{fins()}; Delete; };
+  EndIf
   // The sector: two half-spaces bounded by the dividing planes at th +- 60 degrees, each moved
   // gap/2 into the sector, and the lower half (z < zc).
   Box(22 + 10 * k) = {gap / 2, -big, -Lin, big, 2 * big, zc + Lin};

@@ -114,6 +114,8 @@ bad = [(n, e, k, PLATES) for n, e, k in bad] + [
      scene("plates_closing")),
     ("negative seal resistance", ["-gap_seal_resistance", "-1e7"], "gap_seal_resistance",
      scene("plates_closing")),
+    ("negative coaptation height", ["-mesh_params", "coapt=-0.003"], "coapt", scene("valve_closing")),
+    ("negative commissural post depth", ["-mesh_params", "post=-0.002"], "post", scene("valve_closing")),
 ]
 for name, extra, needle, sc in bad:
     r = run(sc, extra=extra)
