@@ -59,6 +59,7 @@ void collective_output(MPI_Comm comm, const std::function<void()> &write);
 
 // This process's peak resident memory so far [MB].
 double peak_memory_mb();
+void release_free_heap(); // return freed heap pages to the system (after large temporaries)
 
 // Sum of n over the lower ranks of comm: where this rank's entries start in a distributed
 // numbering (0 on rank 0).

@@ -49,24 +49,31 @@ bool ElementAssembler::find_positions(Mat J, const std::vector<char> &is_dirichl
     FSI_CALL(MatMPIAIJGetSeqAIJ(J, &A_, &B_, &garray));
   else
     A_ = J, B_ = nullptr;
-  PetscInt nr;
-  const PetscInt *ia, *ja, *ib = nullptr, *jb = nullptr;
+  // The column indices are read in place (a copy of them would cost as much memory as the
+  // pattern itself: ~37 MB per rank on the paper-size tube).
+  PetscInt nr, nrb = 0;
+  const PetscInt *ia, *jaA, *ib = nullptr, *jaB = nullptr;
   PetscBool done;
-  FSI_CALL(MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
+  FSI_CALL(MatGetRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &jaA, &done));
   iaA_.assign(ia, ia + nr + 1);
-  std::vector<PetscInt> jaA(ja, ja + ia[nr]), jaB;
-  FSI_CALL(MatRestoreRowIJ(A_, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &done));
   PetscInt nB = 0;
   if (B_) {
-    PetscInt nrb;
-    FSI_CALL(MatGetRowIJ(B_, 0, PETSC_FALSE, PETSC_FALSE, &nrb, &ib, &jb, &done));
+    FSI_CALL(MatGetRowIJ(B_, 0, PETSC_FALSE, PETSC_FALSE, &nrb, &ib, &jaB, &done));
     iaB_.assign(ib, ib + nrb + 1);
-    jaB.assign(jb, jb + ib[nrb]);
-    FSI_CALL(MatRestoreRowIJ(B_, 0, PETSC_FALSE, PETSC_FALSE, &nrb, &ib, &jb, &done));
     FSI_CALL(MatGetSize(B_, nullptr, &nB));
   } else {
     iaB_.assign(nr + 1, 0);
   }
+  struct Restore { // the index arrays go back on every return
+    Mat A, B;
+    PetscInt nr, nrb;
+    const PetscInt *ia, *ja, *ib, *jb;
+    ~Restore() {
+      PetscBool d;
+      MatRestoreRowIJ(A, 0, PETSC_FALSE, PETSC_FALSE, &nr, &ia, &ja, &d);
+      if (B) MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &nrb, &ib, &jb, &d);
+    }
+  } restore{A_, B_, nr, nrb, ia, jaA, ib, jaB};
   const PetscInt r0 = space.rstart, r1 = space.rstart + space.n_owned;
   const size_t ne = dofs.size() / n;
   pos_.assign(ne * G * G, 0);
@@ -89,13 +96,13 @@ bool ElementAssembler::find_positions(Mat J, const std::vector<char> &is_dirichl
         for (int j = 0; j < n; ++j) {
           const PetscInt gc = space.local_to_global[d[j]];
           if (gc >= r0 && gc < r1) {
-            auto it = std::lower_bound(jaA.begin() + iaA_[lr], jaA.begin() + iaA_[lr + 1], gc - r0);
-            k[j] = it - (jaA.begin() + iaA_[lr]);
+            const PetscInt *it = std::lower_bound(jaA + iaA_[lr], jaA + iaA_[lr + 1], gc - r0);
+            k[j] = it - (jaA + iaA_[lr]);
           } else {
             const PetscInt *gi = std::lower_bound(garray, garray + nB, gc);
             const PetscInt cb = gi - garray;
-            auto it = std::lower_bound(jaB.begin() + iaB_[lr], jaB.begin() + iaB_[lr + 1], cb);
-            k[j] = lenA + (it - (jaB.begin() + iaB_[lr]));
+            const PetscInt *it = std::lower_bound(jaB + iaB_[lr], jaB + iaB_[lr + 1], cb);
+            k[j] = lenA + (it - (jaB + iaB_[lr]));
           }
           if (k[j] >= 0xFFFF)
             throw PetscFailure("internal: matrix row too long for 16-bit positions");

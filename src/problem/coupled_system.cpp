@@ -131,6 +131,11 @@ void CoupledSystem::create_solver() {
   FSI_CALL(KSPGetPC(ksp, &pc));
   PetscBool fs;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
+  PetscBool in_place = PETSC_FALSE;
+  FSI_CALL(PetscOptionsGetBool(nullptr, nullptr, "-fieldsplit_velocity_sub_pc_factor_in_place",
+                               &in_place, nullptr));
+  factored_state_ = -1;
+  if (fs && in_place) FSI_CALL(KSPSetPreSolve(ksp, in_place_presolve, this));
   if (fs) {
     // The solid's elasticity operator: GAMG builds its coarse spaces from the rigid-body modes.
     if (rigid_modes_) compose_rigid_body_modes(space_.is_velocity, space_.velocity_node_X);
@@ -173,6 +178,37 @@ PetscErrorCode CoupledSystem::pc_rebuild_monitor(SNES snes, PetscInt, PetscReal,
     PetscCall(SNESSetLagPreconditioner(snes, -2)); // at the next Jacobian, then kept
     ++self->cost_.preconditioner_rebuilds;
   }
+  return 0;
+}
+
+// Before each outer linear solve, after SNES has said whether the preconditioner is reused: a
+// rebuild (not reused, and a Jacobian PETSc's setup has not seen) refills the split's velocity
+// block, which the last setup factored in place.
+PetscErrorCode CoupledSystem::in_place_presolve(KSP ksp, Vec, Vec, void *ctx) {
+  auto *self = static_cast<CoupledSystem *>(ctx);
+  PC pc;
+  PetscBool reuse;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(KSPGetReusePreconditioner(ksp, &reuse));
+  const long state = self->cost_.jacobians; // a new Jacobian is a new matrix state
+  const bool first = self->factored_state_ < 0;
+  if (reuse && !first) return 0;
+  if (state == self->factored_state_) return 0; // PETSc keeps the preconditioner as it is
+  self->factored_state_ = state;
+  if (first) return 0; // nothing factored yet
+  KSP *sub;
+  PetscInt n;
+  PetscCall(PCFieldSplitGetSubKSP(pc, &n, &sub));
+  Mat A00, block;
+  PetscCall(KSPGetOperators(sub[0], nullptr, &A00));
+  PetscCall(PetscFree(sub));
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A00), &size));
+  block = A00; // on 1 rank the block-Jacobi block is the split's matrix itself
+  if (size > 1) PetscCall(MatGetDiagonalBlock(A00, &block));
+  MatFactorType type;
+  PetscCall(MatGetFactorType(block, &type));
+  if (type != MAT_FACTOR_NONE) PetscCall(MatSetUnfactored(block));
   return 0;
 }
 

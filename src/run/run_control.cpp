@@ -49,6 +49,7 @@ std::unique_ptr<Simulation> rebuild(std::unique_ptr<Simulation> old, const Mesh 
   const Scene &scene = old->scene();
   old->close_outputs();
   old.reset(); // nothing of the old space survives
+  release_free_heap();
   const std::string part = "rebuild" + std::to_string(state.step) + "_";
   names.fields = part + "fields";
   names.hemo = part + "hemo";
@@ -80,6 +81,7 @@ void remesh(MPI_Comm comm, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mes
   sim->close_outputs();
   sim.reset(); // nothing of the old space survives
   mesh = std::make_unique<Mesh>();
+  release_free_heap(); // the old run and mesh
   load_mesh_file(comm, *mesh, path);
   names.fields = "remesh" + std::to_string(k) + "_fields";
   names.hemo = "remesh" + std::to_string(k) + "_hemo";

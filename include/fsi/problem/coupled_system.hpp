@@ -90,6 +90,13 @@ private:
   long pc_rebuild_krylov_ = 0;
   PetscInt lag_to_restore_ = 0; // the lag to set back after a solve that forced a rebuild
   static PetscErrorCode pc_rebuild_monitor(SNES, PetscInt, PetscReal, void *);
+  // The field split's velocity block factored in place
+  // (-fieldsplit_velocity_sub_pc_factor_in_place: its ILU overwrites the split's copy of the block
+  // instead of holding a second one, ~100 MB per rank on the paper-size tube).  PETSc refills that
+  // copy when it rebuilds the preconditioner and refuses a factored matrix, so before a rebuild the
+  // block is marked unfactored.
+  long factored_state_ = -1; // the Jacobian count when the split was last set up
+  static PetscErrorCode in_place_presolve(KSP, Vec, Vec, void *);
   Vec F_ = nullptr, Uloc_ = nullptr, Floc_ = nullptr;
   Mat J_ = nullptr;
   SNES snes_ = nullptr;
