@@ -131,11 +131,10 @@ void CoupledSystem::create_solver() {
   FSI_CALL(KSPGetPC(ksp, &pc));
   PetscBool fs;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
-  PetscBool in_place = PETSC_FALSE;
-  FSI_CALL(PetscOptionsGetBool(nullptr, nullptr, "-fieldsplit_velocity_sub_pc_factor_in_place",
-                               &in_place, nullptr));
+  // An ILU factored in place (-fieldsplit_velocity_sub_pc_factor_in_place) is found by looking
+  // at the block, not at the option: reading the option would mark it used where nothing else does.
   factored_state_ = -1;
-  if (fs && in_place) FSI_CALL(KSPSetPreSolve(ksp, in_place_presolve, this));
+  if (fs) FSI_CALL(KSPSetPreSolve(ksp, in_place_presolve, this));
   if (fs) {
     // The solid's elasticity operator: GAMG builds its coarse spaces from the rigid-body modes.
     if (rigid_modes_) compose_rigid_body_modes(space_.is_velocity, space_.velocity_node_X);
@@ -202,12 +201,19 @@ PetscErrorCode CoupledSystem::in_place_presolve(KSP ksp, Vec, Vec, void *ctx) {
   Mat A00, block;
   PetscCall(KSPGetOperators(sub[0], nullptr, &A00));
   PetscCall(PetscFree(sub));
+  if (!A00) return 0;
   PetscMPIInt size;
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)A00), &size));
-  block = A00; // on 1 rank the block-Jacobi block is the split's matrix itself
-  if (size > 1) PetscCall(MatGetDiagonalBlock(A00, &block));
   MatFactorType type;
-  PetscCall(MatGetFactorType(block, &type));
+  PetscCall(MatGetFactorType(A00, &type));
+  block = A00; // on 1 rank the block-Jacobi block is the split's matrix itself
+  if (size > 1 && type == MAT_FACTOR_NONE) {
+    PetscBool mpi;
+    PetscCall(PetscObjectTypeCompare((PetscObject)A00, MATMPIAIJ, &mpi));
+    if (!mpi) return 0; // not a block-Jacobi-able AIJ block: nothing of ours to unfactor
+    PetscCall(MatGetDiagonalBlock(A00, &block));
+    PetscCall(MatGetFactorType(block, &type));
+  }
   if (type != MAT_FACTOR_NONE) PetscCall(MatSetUnfactored(block));
   return 0;
 }
