@@ -214,13 +214,44 @@ ProjectionReport project_divergence_free(const Space &space, const std::vector<P
     if (space.owned(i) && (!in_fluid[i] || keep_value[i] || idle_multiplier))
       keep.push_back(space.local_to_global[i]);
   }
-  FSI_CALL(VecCopy(V, x));
-  FSI_CALL(MatZeroRows(A, (PetscInt)keep.size(), keep.data(), 1.0, x, b));
+  // Only the free rows and columns are solved for: the held dofs' values move to the right-hand
+  // side (b_f - A_fk x_k), and the factorisation sees neither the solid's nor the contact pairs'
+  // part of the Jacobian's pattern (explicit zeros that a factorisation would fill in).
+  std::vector<char> held(space.n_owned, 0);
+  for (PetscInt g : keep)
+    held[g - space.rstart] = 1;
+  std::vector<PetscInt> free_rows;
+  for (PetscInt r = 0; r < space.n_owned; ++r)
+    if (!held[r]) free_rows.push_back(space.rstart + r);
+  IS is_free;
+  FSI_CALL(ISCreateGeneral(comm, (PetscInt)free_rows.size(), free_rows.data(), PETSC_COPY_VALUES,
+                           &is_free));
+  Vec xk, r;
+  FSI_CALL(VecDuplicate(V, &xk));
+  FSI_CALL(VecDuplicate(V, &r));
+  {
+    const PetscScalar *va;
+    PetscScalar *xa;
+    FSI_CALL(VecGetArrayRead(V, &va));
+    FSI_CALL(VecGetArray(xk, &xa));
+    for (PetscInt i = 0; i < space.n_owned; ++i)
+      xa[i] = held[i] ? va[i] : 0.0;
+    FSI_CALL(VecRestoreArray(xk, &xa));
+    FSI_CALL(VecRestoreArrayRead(V, &va));
+  }
+  FSI_CALL(MatMult(A, xk, r));
+  FSI_CALL(VecAXPY(b, -1.0, r));
+  Mat Af;
+  FSI_CALL(MatCreateSubMatrix(A, is_free, is_free, MAT_INITIAL_MATRIX, &Af));
+  FSI_CALL(MatDestroy(&A));
+  Vec bf, xf;
+  FSI_CALL(VecGetSubVector(b, is_free, &bf));
+  FSI_CALL(MatCreateVecs(Af, &xf, nullptr));
 
   KSP ksp;
   FSI_CALL(KSPCreate(comm, &ksp));
   FSI_CALL(KSPSetOptionsPrefix(ksp, "remesh_projection_"));
-  FSI_CALL(KSPSetOperators(ksp, A, A));
+  FSI_CALL(KSPSetOperators(ksp, Af, Af));
   // Default: MUMPS LU (exact: the run is the same on any rank count, restarts reproduce).
   // -remesh_projection_pc_type fieldsplit solves it iteratively, twice as fast on the valve
   // (FGMRES on a Schur factorisation: the velocity mass by CG + Jacobi, the P1 Schur complement
@@ -233,11 +264,43 @@ ProjectionReport project_divergence_free(const Space &space, const std::vector<P
   FSI_CALL(KSPSetFromOptions(ksp));
   PetscBool fs;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
-  if (fs) { // the velocity mass, then the multiplier
-    FSI_CALL(PCFieldSplitSetIS(pc, "velocity", space.is_velocity));
-    FSI_CALL(PCFieldSplitSetIS(pc, "pressure", space.is_pressure));
+  if (fs) { // the velocity mass, then the multiplier, numbered within the free dofs
+    IS iv, ip;
+    FSI_CALL(ISEmbed(space.is_velocity, is_free, PETSC_TRUE, &iv));
+    FSI_CALL(ISEmbed(space.is_pressure, is_free, PETSC_TRUE, &ip));
+    PetscInt lo;
+    FSI_CALL(VecGetOwnershipRange(xf, &lo, nullptr));
+    for (IS *e : {&iv, &ip}) { // ISEmbed gives local positions: make them global
+      const PetscInt *id;
+      PetscInt n;
+      FSI_CALL(ISGetLocalSize(*e, &n));
+      FSI_CALL(ISGetIndices(*e, &id));
+      std::vector<PetscInt> g(id, id + n);
+      FSI_CALL(ISRestoreIndices(*e, &id));
+      for (PetscInt &k : g)
+        k += lo;
+      FSI_CALL(ISDestroy(e));
+      FSI_CALL(ISCreateGeneral(comm, n, g.data(), PETSC_COPY_VALUES, e));
+    }
+    FSI_CALL(PCFieldSplitSetIS(pc, "velocity", iv));
+    FSI_CALL(PCFieldSplitSetIS(pc, "pressure", ip));
+    FSI_CALL(ISDestroy(&iv));
+    FSI_CALL(ISDestroy(&ip));
   }
-  FSI_CALL(KSPSolve(ksp, b, x));
+  FSI_CALL(KSPSolve(ksp, bf, xf));
+  FSI_CALL(VecRestoreSubVector(b, is_free, &bf));
+  FSI_CALL(VecCopy(V, x)); // held dofs keep their value; the free ones from the solve
+  {
+    Vec xs;
+    FSI_CALL(VecGetSubVector(x, is_free, &xs));
+    FSI_CALL(VecCopy(xf, xs));
+    FSI_CALL(VecRestoreSubVector(x, is_free, &xs));
+  }
+  FSI_CALL(VecDestroy(&xf));
+  FSI_CALL(VecDestroy(&xk));
+  FSI_CALL(VecDestroy(&r));
+  FSI_CALL(ISDestroy(&is_free));
+  A = Af;
   KSPConvergedReason reason;
   FSI_CALL(KSPGetConvergedReason(ksp, &reason));
   FSI_CALL(KSPDestroy(&ksp));
