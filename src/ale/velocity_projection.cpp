@@ -208,18 +208,18 @@ ProjectionReport project_divergence_free(const Space &space, const std::vector<P
         coupled[space.cell_pdof[4 * k + b]] = 1;
   }
   coupled = space.mark_on_all_ranks(coupled);
-  std::vector<PetscInt> keep;
-  for (PetscInt i = 0; i < space.n_local; ++i) {
-    const bool idle_multiplier = in_fluid[i] && !velocity[i] && !coupled[i];
-    if (space.owned(i) && (!in_fluid[i] || keep_value[i] || idle_multiplier))
-      keep.push_back(space.local_to_global[i]);
-  }
   // Only the free rows and columns are solved for: the held dofs' values move to the right-hand
   // side (b_f - A_fk x_k), and the factorisation sees neither the solid's nor the contact pairs'
   // part of the Jacobian's pattern (explicit zeros that a factorisation would fill in).
-  std::vector<char> held(space.n_owned, 0);
-  for (PetscInt g : keep)
-    held[g - space.rstart] = 1;
+  // held, is_v: per owned row (global index - rstart).
+  std::vector<char> held(space.n_owned, 0), is_v(space.n_owned, 0);
+  for (PetscInt i = 0; i < space.n_local; ++i) {
+    if (!space.owned(i)) continue;
+    const PetscInt r = space.local_to_global[i] - space.rstart;
+    const bool idle_multiplier = in_fluid[i] && !velocity[i] && !coupled[i];
+    held[r] = !in_fluid[i] || keep_value[i] || idle_multiplier;
+    is_v[r] = velocity[i];
+  }
   std::vector<PetscInt> free_rows;
   for (PetscInt r = 0; r < space.n_owned; ++r)
     if (!held[r]) free_rows.push_back(space.rstart + r);
@@ -264,24 +264,15 @@ ProjectionReport project_divergence_free(const Space &space, const std::vector<P
   FSI_CALL(KSPSetFromOptions(ksp));
   PetscBool fs;
   FSI_CALL(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &fs));
-  if (fs) { // the velocity mass, then the multiplier, numbered within the free dofs
-    IS iv, ip;
-    FSI_CALL(ISEmbed(space.is_velocity, is_free, PETSC_TRUE, &iv));
-    FSI_CALL(ISEmbed(space.is_pressure, is_free, PETSC_TRUE, &ip));
-    PetscInt lo;
+  if (fs) {      // the velocity mass, then the multiplier, numbered within the free dofs
+    PetscInt lo; // the free dofs' numbering: this rank's start
     FSI_CALL(VecGetOwnershipRange(xf, &lo, nullptr));
-    for (IS *e : {&iv, &ip}) { // ISEmbed gives local positions: make them global
-      const PetscInt *id;
-      PetscInt n;
-      FSI_CALL(ISGetLocalSize(*e, &n));
-      FSI_CALL(ISGetIndices(*e, &id));
-      std::vector<PetscInt> g(id, id + n);
-      FSI_CALL(ISRestoreIndices(*e, &id));
-      for (PetscInt &k : g)
-        k += lo;
-      FSI_CALL(ISDestroy(e));
-      FSI_CALL(ISCreateGeneral(comm, n, g.data(), PETSC_COPY_VALUES, e));
-    }
+    std::vector<PetscInt> v, p;
+    for (size_t k = 0; k < free_rows.size(); ++k)
+      (is_v[free_rows[k] - space.rstart] ? v : p).push_back(lo + (PetscInt)k);
+    IS iv, ip;
+    FSI_CALL(ISCreateGeneral(comm, (PetscInt)v.size(), v.data(), PETSC_COPY_VALUES, &iv));
+    FSI_CALL(ISCreateGeneral(comm, (PetscInt)p.size(), p.data(), PETSC_COPY_VALUES, &ip));
     FSI_CALL(PCFieldSplitSetIS(pc, "velocity", iv));
     FSI_CALL(PCFieldSplitSetIS(pc, "pressure", ip));
     FSI_CALL(ISDestroy(&iv));
