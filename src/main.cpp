@@ -66,6 +66,7 @@ int run(MPI_Comm comm) {
   auto sim = std::make_unique<Simulation>(*mesh, scene, names, resume.get());
   std::vector<std::string> field_parts{names.fields}; // one per mesh the run was on
   StepControl control = StepControl::from_options(scene.time.dt);
+  control.set_error_control(sim->adapt_switched()); // a resumed run's switch state
   if (resume) {
     // -restart_reset_dt: resume at the scene's step (a run stuck at cut steps), not the saved one
     if (!opt::flag("restart_reset_dt", false))
@@ -157,6 +158,7 @@ int run(MPI_Comm comm) {
         options_checked = true;
       }
       report.record(out, *sim, s, dt, step_s); // monitors, monitor.csv row, fields
+      control.set_error_control(sim->adapt_switched());
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);
       if (remesh_every > 0 && sim->step_index() % remesh_every == 0 &&

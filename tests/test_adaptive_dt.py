@@ -5,7 +5,10 @@ rigid pipe fed with the valve scene's inflow waveform (systole, backflow, a stil
    centre-line velocity and inlet pressure stay within stated bounds of the fixed run.
 2. The tolerance controls the error: a 5x looser -ts_rtol takes fewer steps and moves further
    from the fixed run.
-3. Restart mid-cycle (1 -> 2 ranks, after step 60) reproduces the uninterrupted adaptive run: the controller's
+3. Switched by a monitor condition (-ts_adapt_switch_when, the valve's diastole): fixed 5 ms steps
+   until the condition holds, error-controlled after (the fixed run's steps in systole, the
+   adaptive run's few in diastole); and back to exactly 5 ms when it stops holding.
+4. Restart mid-cycle (1 -> 2 ranks, after step 60) reproduces the uninterrupted adaptive run: the controller's
    state (dt, last error) travels in the checkpoint.
 Pressure is compared away from the waveform's kinks (t = 0, 0.385, 0.495 s), where dQ/dt jumps and
 any time-step puts an O(1) pressure error in a window one step wide."""
@@ -69,6 +72,35 @@ check(dt_[0] < 5e-3, f"centre-line velocity within 0.5 % of the fixed run ({dt_[
 check(dt_[1] < 3e-2, f"inlet pressure within 3 % away from kinks ({dt_[1]:.2e})")
 check(n["loose"][0] < n["tight"][0] and dl[2] > dt_[2],
       "a looser tolerance: fewer steps, further from the fixed run")
+
+# Error control only while a condition holds (time > 0.5: the still diastole), and the reverse.
+# (the second term always holds: it checks that terms joined by & are read)
+on = run(S, extra=COARSE + ["-ts_adapt_switch_when", "time>0.5&probe0_vz<10", "-ts_adapt_dt_max", "0.05"])
+off = run(S, extra=COARSE + ADAPT[2:] + ["-ts_adapt_switch_when", "time<0.5"])
+check(on.code == 0 and off.code == 0, "switched runs succeed")
+if on.code == 0 and off.code == 0:
+    O, B = history(on), history(off)
+    before = [x for x in O if x[0] <= 0.5 + 1e-9]
+    dia = sum(1 for x in O if x[0] > 0.5)
+    print(f"switched at 0.5 s: {len(O)} steps ({dia} in diastole); reverse: {len(B)} steps")
+    check("(now > 0.5 & probe0_vz<10) at t = 0.5 s: time steps chosen by the error estimate from "
+          "the next step" in on.out, "the switch says when error control starts")
+    check(len(before) == 100 and all(abs(x[3] - 0.005) < 1e-12 for x in before)
+          and max(abs(a[1] - b[1]) for a, b in zip(before, F)) < 1e-12,
+          "before the switch: the fixed run's 5 ms steps and answer")
+    check(dia <= n["fixed"][1] / 3 and abs(O[-1][0] - 1.1) < 1e-9,
+          f"after it: {dia} diastolic steps <= 1/3 of {n['fixed'][1]}, lands on 1.1 s")
+    after = [x for x in B if x[0] > 0.5 + 0.005 + 1e-9]
+    check("(no longer < 0.5)" in off.out and after and all(x[3] <= 0.005 + 1e-12 for x in after)
+          and abs(max(x[3] for x in after) - 0.005) < 1e-12,
+          f"the reverse: error control to 0.5 s ({len(B) - len(after)} steps), then -ts_dt again")
+for bad, words in ((["-ts_adapt_switch_when", "time>0.5&nope<1"],
+                    "option -ts_adapt_switch_when: the run has no monitor column 'nope'"),
+                   (["-ts_adapt_switch_when", "time>0.5&"], "several joined by &"),
+                   (["-ts_adapt_switch_when", "time>0.5", "-ts_adapt_type", "error"],
+                    "needs -ts_adapt_type cut")):
+    B = run(S, extra=COARSE + bad + ["-ts_max_steps", "1"])
+    check(B.code != 0 and words in B.out, f"{bad}: one-line error ({words})")
 
 # Restart mid-cycle: stopped after step 60 (-ts_max_steps caps an adaptive run), resumed on 2
 # ranks to the end.

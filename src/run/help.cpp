@@ -63,7 +63,8 @@ const std::vector<Section> &sections() {
         {"ts_max_time", "", "s", "end time (a whole number of steps)"},
         {"ts_alpha_radius", "0.5", "-", "spectral radius rho_inf in [0, 1]"},
         {"ts_alpha_radius_switch_when", "", "-",
-         "COLUMN<VALUE or COLUMN>VALUE on a monitor.csv column: after a step where it holds "
+         "COLUMN<VALUE or COLUMN>VALUE on a monitor.csv column or time: after a step where it "
+         "holds "
          "rho_inf is -ts_alpha_radius_switch_to, after one where it does not -ts_alpha_radius"},
         {"ts_alpha_radius_switch_to", "0", "-", "rho_inf after the switch, in [0, 1]"},
         {"ts_predictor", "constant", "-",
@@ -76,6 +77,10 @@ const std::vector<Section> &sections() {
         {"ts_adapt_wnormtype", "infinity", "-",
          "error: norm of the local error over the velocity dofs, infinity (largest) | 2 (root "
          "mean square)"},
+        {"ts_adapt_switch_when", "", "-",
+         "COLUMN<VALUE or COLUMN>VALUE (with -ts_adapt_type cut): after a step where it holds dt "
+         "is chosen by the error estimate (-ts_rtol, -ts_atol, ...), after one where it does not "
+         "it is -ts_dt"},
         {"ts_adapt_dt_max", "10 ts_dt", "s", "error: largest step"},
         {"ts_adapt_safety", "0.9", "-", "error: safety factor of the step-size controller"},
         {"ts_adapt_max_rejections", "5", "-", "error: rejections of one step before it is taken"},

@@ -78,6 +78,8 @@ Simulation::Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &
     auto sw = state->lumped.find("rho_inf_switched");
     if (rho_switch_ && sw != state->lumped.end() && sw->second != 0)
       rho_switched_ = true, time_->set_rho_inf(rho_switch_to_);
+    auto as = state->lumped.find("adapt_switched");
+    adapt_switched_ = adapt_switch_ && as != state->lumped.end() && as->second != 0;
   }
 }
 
@@ -184,7 +186,14 @@ void Simulation::build_physics(const Mesh &mesh) {
         "option -ts_alpha_radius_switch_to (spectral radius rho_inf) must be in [0, 1]");
   if (rho_switch_ && scene_.time.steady)
     throw InputError("option -ts_alpha_radius_switch_when needs -ts_type alpha");
-  rho_switch_.bind(monitor_columns());
+  // The switches may also test the time: "time" is the column after the monitor's own.
+  auto switch_columns = monitor_columns();
+  switch_columns.push_back("time");
+  rho_switch_.bind(switch_columns);
+  // Error-controlled steps while a monitor condition holds (the valve's quiet diastole: long
+  // steps where nothing moves; the scene's dt elsewhere).  StepControl checks the mode.
+  adapt_switch_ = MonitorCondition::from_option("ts_adapt_switch_when");
+  adapt_switch_.bind(switch_columns);
 }
 
 // Initial state at t = 0: rest, a uniform velocity, or the exact flow (-ic rest|velocity|exact).
@@ -454,21 +463,39 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
     FSI_CALL(VecDestroy(&dloc));
     wss_.write_instantaneous(step_index(), time());
   }
-  bcs_->observe(time(), row); // a flow that stops when the valve has closed
-  if (rho_switch_) {          // rho_inf follows the condition: the switched value while it holds
+  bcs_->observe(time(), row);      // a flow that stops when the valve has closed
+  std::vector<double> row_t = row; // the switches' columns: the monitors and the time
+  row_t.push_back(time());
+  if (rho_switch_) { // rho_inf follows the condition: the switched value while it holds
     double m = 0;
-    const bool on = rho_switch_.holds(row, PetscObjectComm((PetscObject)space_.dm), &m);
+    const bool on = rho_switch_.holds(row_t, PetscObjectComm((PetscObject)space_.dm), &m);
     if (on != rho_switched_) {
       const double r = on ? rho_switch_to_ : scene_.time.rho_inf;
       char msg[256]; // snprintf: PETSc's printf would write the value 0 as "0."
       std::snprintf(msg, sizeof msg,
-                    "fsi_app: %s = %g (%s %c %g) at t = %.6g s: generalized-alpha rho_inf %g -> %g "
-                    "from the next step\n",
+                    "fsi_app: %s = %g (%s %c %g%s) at t = %.6g s: generalized-alpha rho_inf %g -> "
+                    "%g from the next step\n",
                     rho_switch_.column.c_str(), m, on ? "now" : "no longer", rho_switch_.op,
-                    rho_switch_.value, time(), time_->params().rho_inf, r);
+                    rho_switch_.value, rho_switch_.rest().c_str(), time(), time_->params().rho_inf,
+                    r);
       PetscPrintf(PetscObjectComm((PetscObject)space_.dm), "%s", msg);
       rho_switched_ = on;
       time_->set_rho_inf(r);
+    }
+  }
+  if (adapt_switch_) {
+    double m = 0;
+    const bool on = adapt_switch_.holds(row_t, PetscObjectComm((PetscObject)space_.dm), &m);
+    if (on != adapt_switched_) {
+      char msg[256];
+      std::snprintf(msg, sizeof msg,
+                    "fsi_app: %s = %g (%s %c %g%s) at t = %.6g s: time steps %s from the next "
+                    "step\n",
+                    adapt_switch_.column.c_str(), m, on ? "now" : "no longer", adapt_switch_.op,
+                    adapt_switch_.value, adapt_switch_.rest().c_str(), time(),
+                    on ? "chosen by the error estimate" : "back to -ts_dt");
+      PetscPrintf(PetscObjectComm((PetscObject)space_.dm), "%s", msg);
+      adapt_switched_ = on;
     }
   }
   return row;
@@ -490,6 +517,7 @@ RunState Simulation::capture() const {
   wss_.save(s);
   bcs_->save_state(s.lumped);
   if (rho_switch_) s.lumped["rho_inf_switched"] = rho_switched_;
+  if (adapt_switch_) s.lumped["adapt_switched"] = adapt_switched_;
   return s;
 }
 

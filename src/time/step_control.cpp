@@ -26,7 +26,12 @@ StepControl StepControl::from_options(double nominal_dt) {
   c.grow_after = opt::integer("step_grow_after", 3);
   c.easy_newton = opt::integer("step_easy_newton", 4);
   if (c.grow_after < 1) throw InputError("option -step_grow_after must be >= 1");
-  if (c.mode == error) {
+  // -ts_adapt_switch_when: cut mode, error control while a monitor condition holds.
+  c.switchable = c.mode == cut_only && opt::has("ts_adapt_switch_when");
+  if (opt::has("ts_adapt_switch_when") && c.mode != cut_only)
+    throw InputError("option -ts_adapt_switch_when needs -ts_adapt_type cut (the default): it "
+                     "switches error control on while its condition holds");
+  if (c.mode == error || c.switchable) {
     c.tol.rtol = opt::positive("ts_rtol", 0.01);
     c.tol.atol = opt::positive("ts_atol", 1e-3);
     c.tol.rms = opt::choice("ts_adapt_wnormtype", "infinity", {"infinity", "2"}) == "2";
@@ -39,6 +44,14 @@ StepControl StepControl::from_options(double nominal_dt) {
     if (c.safety > 1) throw InputError("option -ts_adapt_safety must be in (0, 1], e.g. 0.9");
   }
   return c;
+}
+
+void StepControl::set_error_control(bool on) {
+  if (!switchable || on == (mode == error)) return;
+  mode = on ? error : cut_only;
+  error_prev = 0; // the PI memory starts afresh
+  easy_run = 0;
+  if (!on) dt = std::min(dt, nominal); // back to the scene's step at once
 }
 
 bool StepControl::cut() {

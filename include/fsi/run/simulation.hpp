@@ -88,6 +88,10 @@ public:
   std::vector<std::string> monitor_columns() const;
   std::vector<double> after_step(double dt, const StepStats &s);
   void close_outputs();
+  // -ts_adapt_switch_when: whether it was given, and whether its condition held after the last
+  // accepted step (the step controller's error mode follows it).
+  bool has_adapt_switch() const { return bool(adapt_switch_); }
+  bool adapt_switched() const { return adapt_switched_; }
   // The state at the last accepted step (collective; data on rank 0).
   RunState capture() const;
 
@@ -134,6 +138,9 @@ private:
   MonitorCondition rho_switch_;
   double rho_switch_to_ = 0;
   bool rho_switched_ = false;
+  // -ts_adapt_switch_when: error-controlled dt after steps where the condition holds.
+  MonitorCondition adapt_switch_;
+  bool adapt_switched_ = false;
   std::unique_ptr<Ale> ale_;
   std::unique_ptr<CoupledSystem> system_;
   std::unique_ptr<Checkpoint> keys_;

@@ -10,6 +10,9 @@
 //          controller, between -ts_adapt_dt_min and -ts_adapt_dt_max.  A step rejected
 //          -ts_adapt_max_rejections times (default 5) is taken as it is (counted): where the
 //          estimate is noise (it stops shrinking with dt) it would otherwise drive dt to dt_min.
+// -ts_adapt_switch_when COND (with cut): error control while a monitor condition holds (e.g. the
+// valve's quiet diastole), cut mode with the scene's dt otherwise; dt returns to -ts_dt at once
+// when the condition stops holding.
 // Below -ts_adapt_dt_min (default dt / 1000) the run stops: checkpoint, reason, non-zero exit.
 // Steps that end on a distorted fluid mesh are not retried (a smaller step does not help there),
 // except on a mesh just remeshed, whose first step would distort it: retried with a cut step.
@@ -27,7 +30,8 @@ struct StepErrorTolerance {
 
 struct StepControl {
   enum Mode { none, cut_only, error } mode = cut_only;
-  bool enabled = true; // failed steps are retried (cut or error)
+  bool enabled = true;     // failed steps are retried (cut or error)
+  bool switchable = false; // -ts_adapt_switch_when: error mode only while its condition holds
   double nominal = 1, dt = 1, factor = 0.5, dt_min = 1e-3, dt_max = 1;
   long grow_after = 3, easy_newton = 4;
   long easy_run = 0, cuts = 0, grows = 0;
@@ -44,6 +48,8 @@ struct StepControl {
     tol.accept_any = step_rejections >= max_rejections;
     return mode == error ? &tol : nullptr;
   }
+  // -ts_adapt_switch_when: error control on (true) or back to cut mode at the scene's dt.
+  void set_error_control(bool on);
   // After a failed step: the next dt, or false when it would fall below dt_min (or adapt off).
   bool cut();
   // After a step rejected by its error estimate e > 1: the smaller dt, or false below dt_min.
