@@ -37,18 +37,16 @@ MonitorCondition MonitorCondition::from_option(const std::string &option) {
 
 void MonitorCondition::bind(const std::vector<std::string> &columns) {
   if (!op) return;
-  auto it = std::find(columns.begin(), columns.end(), column);
-  if (it == columns.end())
-    throw InputError("option -" + option + ": the run has no monitor column '" + column +
-                     "'; its columns: " + opt::join(columns));
-  index = it - columns.begin();
-  for (Term &t : more) {
-    auto jt = std::find(columns.begin(), columns.end(), t.column);
-    if (jt == columns.end())
-      throw InputError("option -" + option + ": the run has no monitor column '" + t.column +
+  auto place = [&](const std::string &name) -> long {
+    auto it = std::find(columns.begin(), columns.end(), name);
+    if (it == columns.end())
+      throw InputError("option -" + option + ": the run has no monitor column '" + name +
                        "'; its columns: " + opt::join(columns));
-    t.index = jt - columns.begin();
-  }
+    return it - columns.begin();
+  };
+  index = place(column);
+  for (Term &t : more)
+    t.index = place(t.column);
 }
 
 std::string MonitorCondition::rest() const {

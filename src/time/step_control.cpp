@@ -27,8 +27,9 @@ StepControl StepControl::from_options(double nominal_dt) {
   c.easy_newton = opt::integer("step_easy_newton", 4);
   if (c.grow_after < 1) throw InputError("option -step_grow_after must be >= 1");
   // -ts_adapt_switch_when: cut mode, error control while a monitor condition holds.
-  c.switchable = c.mode == cut_only && opt::has("ts_adapt_switch_when");
-  if (opt::has("ts_adapt_switch_when") && c.mode != cut_only)
+  const bool switch_given = opt::has("ts_adapt_switch_when");
+  c.switchable = c.mode == cut_only && switch_given;
+  if (switch_given && c.mode != cut_only)
     throw InputError("option -ts_adapt_switch_when needs -ts_adapt_type cut (the default): it "
                      "switches error control on while its condition holds");
   if (c.mode == error || c.switchable) {
