@@ -74,6 +74,10 @@ int run(MPI_Comm comm) {
     PetscPrintf(comm, "fsi_app: resumed from %s at step %ld, t = %.6e s, dt = %.3e s\n",
                 restart.c_str(), sim->step_index(), sim->time(), control.dt);
   }
+  if (control.switchable && control.period_start(sim->time()) && sim->adapt_switched()) {
+    sim->end_adapt_switch_for_period(); // a run resumed at the end of a cycle
+    control.set_error_control(false);
+  }
   const long first_step = sim->step_index();
   const double first_time = sim->time(), t_end = scene.time.t_end;
   print_run_header(comm, scene, *mesh, *sim);
@@ -110,7 +114,7 @@ int run(MPI_Comm comm) {
   try {
     while (sim->time() < t_end - 1e-9 * scene.time.dt &&
            (scene.time.step_cap == 0 || sim->step_index() < scene.time.step_cap)) {
-      double dt = control.dt;
+      double dt = control.landing(sim->time());
       if (t_end - sim->time() < dt * (1 - 1e-9)) dt = t_end - sim->time(); // land on t_end
       sim->set_dt(dt);
       const double t0 = MPI_Wtime();
@@ -158,6 +162,8 @@ int run(MPI_Comm comm) {
         options_checked = true;
       }
       report.record(out, *sim, s, dt, step_s); // monitors, monitor.csv row, fields
+      if (control.switchable && control.period_start(sim->time()))
+        sim->end_adapt_switch_for_period();
       control.set_error_control(sim->adapt_switched());
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);

@@ -82,6 +82,9 @@ const std::vector<Section> &sections() {
          "is chosen by the error estimate (-ts_rtol, -ts_atol, ...), after one where it does not "
          "it is -ts_dt"},
         {"ts_adapt_dt_max", "10 ts_dt", "s", "error: largest step"},
+        {"ts_adapt_period", "0 (none)", "s",
+         "error: steps land on every multiple of it (a cardiac cycle's start); with "
+         "-ts_adapt_switch_when each new period starts at -ts_dt"},
         {"ts_adapt_safety", "0.9", "-", "error: safety factor of the step-size controller"},
         {"ts_adapt_max_rejections", "5", "-", "error: rejections of one step before it is taken"},
         {"ts_adapt_scale_solve_failed", "0.5", "-", "dt factor after a failed step, in (0, 1)"},

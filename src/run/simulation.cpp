@@ -501,6 +501,15 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   return row;
 }
 
+void Simulation::end_adapt_switch_for_period() {
+  if (!adapt_switched_) return;
+  adapt_switched_ = false;
+  PetscPrintf(PetscObjectComm((PetscObject)space_.dm),
+              "fsi_app: a new period (-ts_adapt_period) at t = %.6g s: time steps back to -ts_dt "
+              "from the next step\n",
+              time());
+}
+
 void Simulation::close_outputs() {
   if (fields_) fields_->close();
   wss_.close();

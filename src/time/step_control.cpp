@@ -43,8 +43,28 @@ StepControl StepControl::from_options(double nominal_dt) {
     c.max_rejections = opt::integer("ts_adapt_max_rejections", 5);
     if (c.max_rejections < 0) throw InputError("option -ts_adapt_max_rejections must be >= 0");
     if (c.safety > 1) throw InputError("option -ts_adapt_safety must be in (0, 1], e.g. 0.9");
-  }
+    c.period = opt::nonnegative("ts_adapt_period", 0.0);
+    if (c.period > 0 && c.period < c.dt_max)
+      throw InputError("option -ts_adapt_period (the cycle length to land on) is shorter than "
+                       "the largest step -ts_adapt_dt_max");
+  } else if (opt::has("ts_adapt_period"))
+    throw InputError("option -ts_adapt_period needs error-controlled steps (-ts_adapt_type error "
+                     "or -ts_adapt_switch_when)");
   return c;
+}
+
+// Periods are counted with a relative slack of 1e-9 so that a step that landed on k T, to
+// rounding, counts as being there.
+double StepControl::landing(double t) const {
+  if (mode != error || period <= 0) return dt;
+  const double next = (std::floor(t / period + 1e-9) + 1) * period;
+  return next - t < dt * (1 - 1e-9) ? next - t : dt;
+}
+
+bool StepControl::period_start(double t) const {
+  if (period <= 0) return false;
+  const double k = std::round(t / period);
+  return k >= 1 && std::abs(t / period - k) < 1e-9;
 }
 
 void StepControl::set_error_control(bool on) {

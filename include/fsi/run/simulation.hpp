@@ -92,6 +92,9 @@ public:
   // accepted step (the step controller's error mode follows it).
   bool has_adapt_switch() const { return bool(adapt_switch_); }
   bool adapt_switched() const { return adapt_switched_; }
+  // A new period (-ts_adapt_period) starts at the scene's dt whatever the condition: the switch
+  // is off until the condition next holds after a step.
+  void end_adapt_switch_for_period();
   // The state at the last accepted step (collective; data on rank 0).
   RunState capture() const;
 

@@ -13,6 +13,9 @@
 // -ts_adapt_switch_when COND (with cut): error control while a monitor condition holds (e.g. the
 // valve's quiet diastole), cut mode with the scene's dt otherwise; dt returns to -ts_dt at once
 // when the condition stops holding.
+// -ts_adapt_period T (s, default 0: none): error-controlled steps land on every multiple of T
+// (a cardiac cycle's start), and a switched run starts each new period at the scene's dt: a long
+// diastolic step never crosses into the next systole.
 // Below -ts_adapt_dt_min (default dt / 1000) the run stops: checkpoint, reason, non-zero exit.
 // Steps that end on a distorted fluid mesh are not retried (a smaller step does not help there),
 // except on a mesh just remeshed, whose first step would distort it: retried with a cut step.
@@ -33,6 +36,7 @@ struct StepControl {
   bool enabled = true;     // failed steps are retried (cut or error)
   bool switchable = false; // -ts_adapt_switch_when: error mode only while its condition holds
   double nominal = 1, dt = 1, factor = 0.5, dt_min = 1e-3, dt_max = 1;
+  double period = 0; // -ts_adapt_period
   long grow_after = 3, easy_newton = 4;
   long easy_run = 0, cuts = 0, grows = 0;
   // Error control: tolerances, safety factor, the last accepted step's scaled error (PI memory),
@@ -48,6 +52,11 @@ struct StepControl {
     tol.accept_any = step_rejections >= max_rejections;
     return mode == error ? &tol : nullptr;
   }
+  // The step to take from time t: dt, shortened in error mode to land on the next multiple of
+  // -ts_adapt_period.
+  double landing(double t) const;
+  // Whether t is a multiple k >= 1 of -ts_adapt_period (to rounding).
+  bool period_start(double t) const;
   // -ts_adapt_switch_when: error control on (true) or back to cut mode at the scene's dt.
   void set_error_control(bool on);
   // After a failed step: the next dt, or false when it would fall below dt_min (or adapt off).
