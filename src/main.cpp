@@ -74,10 +74,13 @@ int run(MPI_Comm comm) {
     PetscPrintf(comm, "fsi_app: resumed from %s at step %ld, t = %.6e s, dt = %.3e s\n",
                 restart.c_str(), sim->step_index(), sim->time(), control.dt);
   }
-  if (control.switchable && control.period_start(sim->time()) && sim->adapt_switched()) {
-    sim->end_adapt_switch_for_period(); // a run resumed at the end of a cycle
-    control.set_error_control(false);
-  }
+  // The error-control switch follows the run's condition; a new period (-ts_adapt_period)
+  // starts at the scene's dt, also in a run resumed at a cycle's end.
+  auto follow_switch = [&]() {
+    if (control.switchable && control.period_start(sim->time())) sim->end_adapt_switch_for_period();
+    control.set_error_control(sim->adapt_switched());
+  };
+  follow_switch();
   const long first_step = sim->step_index();
   const double first_time = sim->time(), t_end = scene.time.t_end;
   print_run_header(comm, scene, *mesh, *sim);
@@ -162,9 +165,7 @@ int run(MPI_Comm comm) {
         options_checked = true;
       }
       report.record(out, *sim, s, dt, step_s); // monitors, monitor.csv row, fields
-      if (control.switchable && control.period_start(sim->time()))
-        sim->end_adapt_switch_for_period();
-      control.set_error_control(sim->adapt_switched());
+      follow_switch();
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);
       if (remesh_every > 0 && sim->step_index() % remesh_every == 0 &&
