@@ -3,6 +3,7 @@
 // columns eliminated once); each step is one linear solve with the new boundary data.
 #include "fsi/ale/mesh_motion.hpp"
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/discretization/sparsity.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -190,49 +191,47 @@ LaplaceMotion::LaplaceMotion(const Mesh &mesh, const Space &space,
   }
   double gvmax;
   MPI_Allreduce(&vmax, &gvmax, 1, MPI_DOUBLE, MPI_MAX, comm);
-  Mat pre;
-  FSI_CALL(MatCreate(comm, &pre));
-  FSI_CALL(MatSetSizes(pre, 3 * nown, 3 * nown, PETSC_DETERMINE, PETSC_DETERMINE));
-  FSI_CALL(MatSetBlockSize(pre, 3));
-  FSI_CALL(MatSetType(pre, MATPREALLOCATOR));
-  FSI_CALL(MatSetUp(pre));
+  // Its pattern: every vertex of a fluid cell couples with every other (all components).
+  std::vector<PetscInt> l2g(3 * nv), cell_dofs;
+  for (PetscInt v = 0; v < nv; ++v)
+    for (int i = 0; i < 3; ++i)
+      l2g[3 * v + i] = 3 * gidx_[v] + i;
+  cell_dofs.reserve(12 * fluid_cells.size());
+  for (PetscInt k : fluid_cells)
+    for (int a = 0; a < 4; ++a)
+      for (int i = 0; i < 3; ++i)
+        cell_dofs.push_back(3 * (PetscInt)space.cell_vertex[4 * k + a] + i);
+  SparsityPattern pattern(comm, l2g, 3 * start, 3 * nown);
+  pattern.add_elements(cell_dofs, 12);
   FSI_CALL(MatCreate(comm, &A0_));
   FSI_CALL(MatSetSizes(A0_, 3 * nown, 3 * nown, PETSC_DETERMINE, PETSC_DETERMINE));
   FSI_CALL(MatSetBlockSize(A0_, 3));
   FSI_CALL(MatSetType(A0_, MATAIJ));
-  for (int pass = 0; pass < 2; ++pass) {
-    Mat M = pass == 0 ? pre : A0_;
-    for (PetscInt k : fluid_cells) {
-      double X[4][3], K[12][12] = {};
-      PetscInt idx[12];
-      space.cell_points(k, space.X.data(), X);
-      TetGeometry g;
-      g.set(X);
-      const double V = g.absdet / 6, kk = std::pow(gvmax / V, chi_);
-      for (int a = 0; a < 4; ++a) {
-        const PetscInt gv = gidx_[space.cell_vertex[4 * k + a]];
+  pattern.preallocate(A0_);
+  for (PetscInt k : fluid_cells) {
+    double X[4][3], K[12][12] = {};
+    PetscInt idx[12];
+    space.cell_points(k, space.X.data(), X);
+    TetGeometry g;
+    g.set(X);
+    const double V = g.absdet / 6, kk = std::pow(gvmax / V, chi_);
+    for (int a = 0; a < 4; ++a) {
+      const PetscInt gv = gidx_[space.cell_vertex[4 * k + a]];
+      for (int i = 0; i < 3; ++i)
+        idx[3 * a + i] = 3 * gv + i;
+      for (int b = 0; b < 4; ++b) {
+        const double s =
+            kk * V *
+            (g.grad_lambda[a][0] * g.grad_lambda[b][0] + g.grad_lambda[a][1] * g.grad_lambda[b][1] +
+             g.grad_lambda[a][2] * g.grad_lambda[b][2]);
         for (int i = 0; i < 3; ++i)
-          idx[3 * a + i] = 3 * gv + i;
-        for (int b = 0; b < 4; ++b) {
-          const double s = kk * V *
-                           (g.grad_lambda[a][0] * g.grad_lambda[b][0] +
-                            g.grad_lambda[a][1] * g.grad_lambda[b][1] +
-                            g.grad_lambda[a][2] * g.grad_lambda[b][2]);
-          for (int i = 0; i < 3; ++i)
-            K[3 * a + i][3 * b + i] = s;
-        }
+          K[3 * a + i][3 * b + i] = s;
       }
-      FSI_CALL(MatSetValues(M, 12, idx, 12, idx, &K[0][0], ADD_VALUES));
     }
-    for (PetscInt r = 3 * start; r < 3 * (start + nown); ++r)
-      FSI_CALL(MatSetValue(M, r, r, 0.0, ADD_VALUES));
-    FSI_CALL(MatAssemblyBegin(M, MAT_FINAL_ASSEMBLY));
-    FSI_CALL(MatAssemblyEnd(M, MAT_FINAL_ASSEMBLY));
-    if (pass == 0) {
-      FSI_CALL(MatPreallocatorPreallocate(pre, PETSC_TRUE, A0_));
-      FSI_CALL(MatDestroy(&pre));
-    }
+    FSI_CALL(MatSetValues(A0_, 12, idx, 12, idx, &K[0][0], ADD_VALUES));
   }
+  FSI_CALL(MatAssemblyBegin(A0_, MAT_FINAL_ASSEMBLY));
+  FSI_CALL(MatAssemblyEnd(A0_, MAT_FINAL_ASSEMBLY));
   FSI_CALL(MatDuplicate(A0_, MAT_COPY_VALUES, &A_));
   FSI_CALL(MatZeroRowsColumns(A_, (PetscInt)rows_.size(), rows_.data(), 1.0, nullptr, nullptr));
   FSI_CALL(MatCreateVecs(A_, &x_, &b_));

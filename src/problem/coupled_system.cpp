@@ -1,4 +1,5 @@
 #include "fsi/problem/coupled_system.hpp"
+#include "fsi/discretization/sparsity.hpp"
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
 
@@ -49,54 +50,38 @@ CoupledSystem::~CoupledSystem() {
 void CoupledSystem::build_pattern() {
   MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);
   ISLocalToGlobalMapping l2g = space_.l2g;
-  Mat pre;
-  FSI_CALL(MatCreate(comm, &pre));
-  FSI_CALL(MatSetSizes(pre, space_.n_owned, space_.n_owned, PETSC_DETERMINE, PETSC_DETERMINE));
-  FSI_CALL(MatSetType(pre, MATPREALLOCATOR));
-  FSI_CALL(MatSetLocalToGlobalMapping(pre, l2g, l2g));
-  FSI_CALL(MatSetUp(pre));
-  std::vector<double> zeros(max_element_dofs * max_element_dofs, 0.0);
-  for (auto &m : modules_) {
-    std::vector<PetscInt> dofs;
+  SparsityPattern pattern(comm, space_.local_to_global, space_.rstart, space_.n_owned);
+  std::vector<std::vector<PetscInt>> element_dofs(modules_.size());
+  for (size_t k = 0; k < modules_.size(); ++k) {
+    auto &m = modules_[k];
     int n = 0;
-    m->element_dofs(dofs, n);
+    m->element_dofs(element_dofs[k], n);
     if (n > max_element_dofs)
       throw PetscFailure("internal: module '" + m->name() + "' has " + std::to_string(n) +
                          " dofs per element; CoupledSystem::max_element_dofs is " +
                          std::to_string(max_element_dofs));
-    for (size_t e = 0; n > 0 && e < dofs.size() / n; ++e)
-      FSI_CALL(
-          MatSetValuesLocal(pre, n, &dofs[n * e], n, &dofs[n * e], zeros.data(), INSERT_VALUES));
+    pattern.add_elements(element_dofs[k], n);
     std::vector<PetscInt> pairs;
     m->global_couplings(pairs);
-    for (size_t k = 0; k + 1 < pairs.size(); k += 2)
+    for (size_t p = 0; p + 1 < pairs.size(); p += 2)
       for (int s = 0; s < 2; ++s) {
-        const PetscInt r0 = pairs[k + s], c0 = pairs[k + 1 - s];
-        if (r0 < space_.rstart || r0 >= space_.rstart + space_.n_owned) continue;
-        const PetscInt rows[3] = {r0, r0 + 1, r0 + 2}, cols[3] = {c0, c0 + 1, c0 + 2};
-        FSI_CALL(MatSetValues(pre, 3, rows, 3, cols, zeros.data(), INSERT_VALUES));
+        const PetscInt r0 = pairs[p + s], c0 = pairs[p + 1 - s];
+        const PetscInt cols[3] = {c0, c0 + 1, c0 + 2};
+        for (int i = 0; i < 3; ++i)
+          pattern.add_row(r0 + i, cols, 3);
       }
   }
   if (bcs_) // boundary terms coupling all their dofs with all (a Windkessel outlet)
-    for (auto &block : bcs_->dense_couplings()) {
-      std::vector<double> zero(block.size(), 0.0);
+    for (auto &block : bcs_->dense_couplings())
       for (PetscInt r : block)
-        if (r >= space_.rstart && r < space_.rstart + space_.n_owned)
-          FSI_CALL(MatSetValues(pre, 1, &r, (PetscInt)block.size(), block.data(), zero.data(),
-                                INSERT_VALUES));
-    }
-  for (PetscInt r = space_.rstart; r < space_.rstart + space_.n_owned; ++r)
-    FSI_CALL(MatSetValue(pre, r, r, 0.0, INSERT_VALUES));
-  FSI_CALL(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
-  FSI_CALL(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
+        pattern.add_row(r, block.data(), (int)block.size());
   if (J_) FSI_CALL(MatDestroy(&J_));
   FSI_CALL(MatCreate(comm, &J_));
   FSI_CALL(MatSetSizes(J_, space_.n_owned, space_.n_owned, PETSC_DETERMINE, PETSC_DETERMINE));
   FSI_CALL(MatSetType(J_, MATAIJ));
   FSI_CALL(MatSetOptionsPrefix(J_, "jac_"));
   FSI_CALL(MatSetLocalToGlobalMapping(J_, l2g, l2g));
-  FSI_CALL(MatPreallocatorPreallocate(pre, PETSC_TRUE, J_));
-  FSI_CALL(MatDestroy(&pre));
+  pattern.preallocate(J_);
   FSI_CALL(MatSetOption(J_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   for (auto &m : modules_)
     m->pattern_built();

@@ -1,6 +1,7 @@
 // Pressure convection-diffusion preconditioner: the operators (PcdOperators) and the PETSc PC
 // type "pcd" that applies S^{-1} ~ (rho cm M_p)^{-1} F_p Sp^{-1} (see pcd.hpp).
 #include "fsi/solver/pcd.hpp"
+#include "fsi/discretization/sparsity.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <petsc/private/pcimpl.h>
@@ -156,27 +157,19 @@ PcdOperators::PcdOperators(const Space &space, const Mesh &mesh, const FluidModu
     if (pindex_[d] >= 0 && held_[d] && space.owned(d)) held_rows_.push_back(pindex_[d]);
 
   // Nonzero pattern: the fluid's P1 element couplings plus every diagonal.
-  Mat pre;
-  FSI_CALL(MatCreate(comm, &pre));
-  FSI_CALL(MatSetSizes(pre, n, n, N, N));
-  FSI_CALL(MatSetType(pre, MATPREALLOCATOR));
-  FSI_CALL(MatSetUp(pre));
-  double zero[16] = {};
-  for (PetscInt k : fluid.cells()) {
-    PetscInt rows[4];
-    bool drop[4];
-    element_rows(&space.cell_pdof[4 * k], rows, drop);
-    FSI_CALL(MatSetValues(pre, 4, rows, 4, rows, zero, ADD_VALUES));
-  }
-  for (PetscInt i = start; i < start + n; ++i)
-    FSI_CALL(MatSetValue(pre, i, i, 0.0, ADD_VALUES));
-  FSI_CALL(MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY));
-  FSI_CALL(MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY));
+  std::vector<PetscInt> cell_dofs; // local pressure dofs, -1 where held (no couplings)
+  cell_dofs.reserve(4 * fluid.cells().size());
+  for (PetscInt k : fluid.cells())
+    for (int a = 0; a < 4; ++a) {
+      const PetscInt d = space.cell_pdof[4 * k + a];
+      cell_dofs.push_back(held_[d] ? -1 : d);
+    }
+  SparsityPattern pattern(comm, pindex_, start, n);
+  pattern.add_elements(cell_dofs, 4);
   FSI_CALL(MatCreate(comm, &Fp_));
   FSI_CALL(MatSetSizes(Fp_, n, n, N, N));
   FSI_CALL(MatSetType(Fp_, MATAIJ));
-  FSI_CALL(MatPreallocatorPreallocate(pre, PETSC_TRUE, Fp_));
-  FSI_CALL(MatDestroy(&pre));
+  pattern.preallocate(Fp_);
   FSI_CALL(MatSetOption(Fp_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   FSI_CALL(MatCreateVecs(Fp_, &D_, nullptr));
   g_Fp = &Fp_;
