@@ -184,6 +184,7 @@ struct StVenantKirchhoff : Material {
   bool small_strain;
   StVenantKirchhoff(double l, double m, bool lin) : lambda(l), mu(m), small_strain(lin) {}
   std::string name() const override { return small_strain ? "linear" : "svk"; }
+  bool constant_tangent() const override { return small_strain; }
   // Strain: E = (F^T F - I)/2 (svk) or eps = sym(F - I) (linear).
   void strain(const double F[3][3], double E[3][3]) const {
     for (int i = 0; i < 3; ++i)

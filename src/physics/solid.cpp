@@ -44,6 +44,8 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh,
     c -= space.cStart;
   rule_ = tet_rule(p.quad_degree);
   ref_ = P2Integrals(rule_);
+  // A constant tangent's stiffness is quadratic on an affine cell: 4 points instead of 11-14.
+  jacobian_rule_ = material_->constant_tangent() ? tet_rule(2) : rule_;
   dofs_.resize(30 * cells_.size());
   for (size_t c = 0; c < cells_.size(); ++c)
     for (int a = 0; a < 10; ++a)
@@ -128,29 +130,38 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
   if (fast) assembler_.begin(Jmat);
   double K[n][n];
   double Kb[3][3][10][10]; // (i, k, a, b)
+  const bool constant = material_->constant_tangent();
+  double A[3][3][3][3], P[3][3];
+  if (constant) {
+    const double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    material_->tangent(I, P, A);
+  }
   for (size_t c : jacobian_order_) {
     const PetscInt k = cells_[c];
     TetGeometry geo;
     double X[4][3], u[10][3];
     reference_geometry(k, geo, X);
     const PetscInt *vd = &space_.cell_vdof[10 * k];
-    for (int a = 0; a < 10; ++a)
+    for (int a = 0; !constant && a < 10; ++a)
       for (int i = 0; i < 3; ++i)
         u[a][i] = ctx.u_af(vd[a] + i);
     std::memset(Kb, 0, sizeof Kb);
-    for (size_t q = 0; q < rule_.weight.size(); ++q) {
-      const double *l = rule_.lambda[q].data();
+    for (size_t q = 0; q < jacobian_rule_.weight.size(); ++q) {
+      const double *l = jacobian_rule_.lambda[q].data();
       double Nd[10], dN[10][3], dNT[3][10];
       p2_tet(l, geo.grad_lambda, Nd, dN);
-      double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, P[3][3], A[3][3][3][3];
       for (int b = 0; b < 10; ++b)
-        for (int J = 0; J < 3; ++J) {
+        for (int J = 0; J < 3; ++J)
           dNT[J][b] = dN[b][J];
-          for (int i = 0; i < 3; ++i)
-            F[i][J] += u[b][i] * dN[b][J];
-        }
-      material_->tangent(F, P, A);
-      const double wk = rule_.weight[q] * geo.absdet * cu;
+      if (!constant) {
+        double F[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        for (int b = 0; b < 10; ++b)
+          for (int J = 0; J < 3; ++J)
+            for (int i = 0; i < 3; ++i)
+              F[i][J] += u[b][i] * dN[b][J];
+        material_->tangent(F, P, A);
+      }
+      const double wk = jacobian_rule_.weight[q] * geo.absdet * cu;
       for (int i = 0; i < 3; ++i)
         for (int kk = 0; kk < 3; ++kk) {
           double Y[3][10]; // Y[L][a] = wk sum_J dN_a,J A_iJkL

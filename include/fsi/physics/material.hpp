@@ -24,6 +24,9 @@ struct Material {
   virtual double energy(const double F[3][3]) const = 0;
   virtual void stress(const double F[3][3], double P[3][3]) const = 0;
   virtual void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const = 0;
+  // True when A does not depend on F (small-strain linear elasticity): the stiffness is then a
+  // product of P2 gradients, integrated exactly by a 4-point rule.
+  virtual bool constant_tangent() const { return false; }
 };
 
 // Reads -solid_material and its parameters (validated: positive moduli, -1 < nu < 0.5).

@@ -66,6 +66,7 @@ private:
   const ExactSolid *exact_;
   std::vector<PetscInt> cells_;
   QuadRule rule_;
+  QuadRule jacobian_rule_; // rule_, or degree 2 (exact) for a constant tangent
   std::vector<std::array<double, 10>> N_;
   P2Integrals ref_;            // reference mass (exact from degree 4)
   std::vector<PetscInt> dofs_; // 30 per cell
