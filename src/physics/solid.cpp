@@ -142,9 +142,10 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
     double X[4][3], u[10][3];
     reference_geometry(k, geo, X);
     const PetscInt *vd = &space_.cell_vdof[10 * k];
-    for (int a = 0; !constant && a < 10; ++a)
-      for (int i = 0; i < 3; ++i)
-        u[a][i] = ctx.u_af(vd[a] + i);
+    if (!constant) // a constant tangent needs no displacement
+      for (int a = 0; a < 10; ++a)
+        for (int i = 0; i < 3; ++i)
+          u[a][i] = ctx.u_af(vd[a] + i);
     std::memset(Kb, 0, sizeof Kb);
     for (size_t q = 0; q < jacobian_rule_.weight.size(); ++q) {
       const double *l = jacobian_rule_.lambda[q].data();
