@@ -2,6 +2,7 @@
 
   /usr/bin/python3 scripts/compare_runs.py REF_DIR RUN_DIR [--columns c1,c2] [--bound PERCENT]
                                            [--scale-from DIR,DIR...] [--window T0,T1]
+                                           [--shift S] [--means]
 
 For each column: the largest (and when) and the RMS difference |run - ref| at the run's times (the reference
 interpolated linearly), as a percentage of the reference's largest |value| in the window, and the
@@ -9,7 +10,9 @@ same at the window's end.  --scale-from takes the scale instead from the largest
 other runs' whole monitors (e.g. the cycle's pieces: diastole's differences against systole's
 peaks).  Prints both runs' cost in the window (steps, wall seconds, Newton).
 With --bound, exits 1 when a column's largest difference passes the bound: the check that an
-adaptive-step run stays within a stated tolerance of a fixed small-step one (docs/valve.md)."""
+adaptive-step run stays within a stated tolerance of a fixed small-step one (docs/valve.md).
+--shift S moves the run's times by -S (a later cycle against the first: --shift 1.1); --means
+also prints both runs' time-weighted means of each column over the window."""
 import argparse
 import math
 import sys
@@ -40,6 +43,17 @@ def interp(rows, c, t):
     return (1 - w) * a[c] + w * b[c]
 
 
+def mean(rows, c, t0, t1):
+    """Time-weighted mean of column c over (t0, t1]: each step's value over its own step."""
+    s = w = 0.0
+    for r in rows:
+        a, b = max(r["time"] - r["dt"], t0), min(r["time"], t1)
+        if b > a:
+            s += (b - a) * r[c]
+            w += b - a
+    return s / w if w else float("nan")
+
+
 def cost(rows):
     return len(rows), sum(r["step_seconds"] for r in rows), sum(r["newton"] for r in rows)
 
@@ -52,8 +66,12 @@ def main():
     ap.add_argument("--bound", type=float, help="largest difference allowed, %% of max |ref|")
     ap.add_argument("--scale-from", help="runs whose whole monitors give each column's scale")
     ap.add_argument("--window", help="T0,T1 [s]: compare only inside this window")
+    ap.add_argument("--shift", type=float, default=0.0, help="S [s]: the run's times minus S")
+    ap.add_argument("--means", action="store_true", help="time-weighted means in the window")
     a = ap.parse_args()
     ref, run = load(a.ref), load(a.run)
+    for r in run:
+        r["time"] -= a.shift
     t0 = max(ref[0]["time"] - ref[0]["dt"], run[0]["time"] - run[0]["dt"])
     t1 = min(ref[-1]["time"], run[-1]["time"])
     if a.window:
@@ -74,7 +92,8 @@ def main():
         dts = [r["dt"] for r in rows]
         print(f"  {name:9s} {n:6d} steps  {s:8.0f} s  Newton {nw:6.0f}  dt {min(dts) * 1e3:.3g} - {max(dts) * 1e3:.3g} ms")
     worst = 0.0
-    print(f"  {'column':22s} {'scale':>10s} {'max diff %':>10s} {'rms diff %':>10s} {'end diff %':>10s} {'at ms':>8s}")
+    print(f"  {'column':22s} {'scale':>10s} {'max diff %':>10s} {'rms diff %':>10s} {'end diff %':>10s} {'at ms':>8s}"
+          + (f" {'ref mean':>11s} {'run mean':>11s}" if a.means else ""))
     for c in a.columns.split(","):
         if c not in run[0] or c not in ref[0]:
             print(f"  {c:22s} (not in both monitors)")
@@ -85,7 +104,8 @@ def main():
         rms = math.sqrt(sum(x * x for x in d) / len(d))
         worst = max(worst, max(d))
         at = runw[d.index(max(d))]["time"] * 1e3
-        print(f"  {c:22s} {scale:10.3g} {max(d):10.2f} {rms:10.2f} {end:10.2f} {at:8.2f}")
+        means = f" {mean(ref, c, t0, t1):11.4g} {mean(run, c, t0, t1):11.4g}" if a.means else ""
+        print(f"  {c:22s} {scale:10.3g} {max(d):10.2f} {rms:10.2f} {end:10.2f} {at:8.2f}{means}")
     if a.bound is not None:
         ok = worst <= a.bound
         print(f"largest difference {worst:.2f} % {'within' if ok else 'PASSES'} the bound {a.bound} %")
