@@ -216,7 +216,7 @@ void load_mesh_file(MPI_Comm comm, Mesh &mesh, const std::string &file) {
   // Bandwidth-reducing point order (before distribution, on the serial mesh): the dofs follow
   // the points, so nearby points give nearby matrix rows (assembly scatter, matrix-vector
   // products and ILU touch fewer cache lines).
-  const std::string order = opt::choice("mesh_reorder", "none", {"none", "rcm"});
+  const std::string order = opt::choice("mesh_reorder", "rcm", {"none", "rcm"});
   if (order == "rcm") {
     IS perm;
     DM permuted;

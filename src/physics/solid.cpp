@@ -26,7 +26,7 @@ SolidParams SolidParams::from_options() {
       p.gravity_wave = Waveform::from_options("solid_gravity_");
     }
   }
-  p.quad_degree = (int)opt::integer("solid_quad_degree", 4);
+  p.quad_degree = (int)opt::integer("solid_quad_degree", 3);
   if (p.quad_degree < 2 || p.quad_degree > 10)
     throw InputError("option -solid_quad_degree must be in [2, 10]");
   p.direct_insertion = opt::flag("solid_direct_insertion", true);
@@ -119,7 +119,8 @@ void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
 
 // Per quadrature point the material stiffness K_ab,ik += w dN_a,J A_iJkL dN_b,L is formed in
 // two contractions over arrays with the node index innermost (Y over a, then K over b), which
-// the compiler vectorises; the mass is the reference mass matrix times rho cm |det|.
+// the compiler vectorises, for the (i, k) blocks with i <= k only (the tangent's major symmetry
+// gives the others); the mass is the reference mass matrix times rho cm |det|.
 void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
   const double cm = ctx.mass_shift() * p_.rho, cu = ctx.disp_shift();
   const std::vector<char> &bc = *ctx.is_dirichlet;
@@ -164,8 +165,8 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
       }
       const double wk = jacobian_rule_.weight[q] * geo.absdet * cu;
       for (int i = 0; i < 3; ++i)
-        for (int kk = 0; kk < 3; ++kk) {
-          double Y[3][10]; // Y[L][a] = wk sum_J dN_a,J A_iJkL
+        for (int kk = i; kk < 3; ++kk) { // K_ba,ki = K_ab,ik (A's major symmetry)
+          double Y[3][10];               // Y[L][a] = wk sum_J dN_a,J A_iJkL
           for (int L = 0; L < 3; ++L) {
             const double c0 = wk * A[i][0][kk][L], c1 = wk * A[i][1][kk][L],
                          c2 = wk * A[i][2][kk][L];
@@ -185,7 +186,8 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
       for (int i = 0; i < 3; ++i)
         for (int b = 0; b < 10; ++b)
           for (int kk = 0; kk < 3; ++kk)
-            K[3 * a + i][3 * b + kk] = Kb[i][kk][a][b] + (i == kk ? sm * ref_.M[a][b] : 0.0);
+            K[3 * a + i][3 * b + kk] =
+                (i <= kk ? Kb[i][kk][a][b] : Kb[kk][i][b][a]) + (i == kk ? sm * ref_.M[a][b] : 0.0);
     if (fast) {
       assembler_.add(Jmat, c, &K[0][0]);
       continue;

@@ -329,8 +329,11 @@ void CoupledSystem::jacobian(Vec U, Mat J) {
   ctx_.U = u;
   for (auto &m : modules_)
     m->prepare(ctx_);
-  for (auto &m : modules_)
+  for (auto &m : modules_) {
+    const double tm = MPI_Wtime();
     m->add_jacobian(ctx_, J);
+    cost_.module_jacobian_time[m->name()] += MPI_Wtime() - tm;
+  }
   bcs_->add_jacobian(ctx_, J);
   for (auto &[dof, val] : bc_values_)
     if (space_.owned(dof))

@@ -51,6 +51,8 @@ void RunReport::absorb(const Simulation &sim) {
   pattern_builds_ += c.pattern_builds;
   pc_rebuilds_ += c.preconditioner_rebuilds;
   jacobian_time_ += c.jacobian_time;
+  for (auto &[name, t] : c.module_jacobian_time)
+    module_jacobian_time_[name] += t;
   residual_time_ += c.residual_time;
   solve_time_ += c.nonlinear_solve_time;
   mesh_motion_time_ += sim.ale().seconds();
@@ -98,6 +100,20 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
     active.push_back(m->name());
   if (sim.ale().moving()) active.push_back("mesh motion: " + sim.ale().motion()->name());
   Json dofs, times, iters, cost, j;
+  // Each module's element loop (its add_jacobian: kernels and the scatter into the matrix):
+  // seconds (max over ranks) and cells per second per rank.  The same modules on every rank.
+  Json by_module;
+  for (auto &m : sim.system().modules()) {
+    auto it = module_jacobian_time_.find(m->name());
+    if (it == module_jacobian_time_.end()) continue;
+    const double t = max_over_ranks(comm_, it->second);
+    PetscInt nc = m->n_cells(), ncg;
+    MPI_Allreduce(&nc, &ncg, 1, MPIU_INT, MPI_SUM, comm_);
+    Json e;
+    e.set("seconds", t).set("cells", (long)ncg);
+    e.set("cells_per_second_per_rank", t > 0 ? double(ncg) / size * jacobians_ / t : 0.0);
+    by_module.set(m->name(), e);
+  }
   double remesh_time = 0, remesh_gmsh = 0, remesh_mem = 0;
   for (auto &r : remeshes_)
     remesh_time += r.seconds, remesh_gmsh += r.mesh_seconds,
@@ -135,6 +151,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
       .set("peak_memory_mb_per_rank_max", mem_max)
       .set("peak_memory_mb_per_rank_min", mem_min)
       .set("peak_memory_kb_per_dof", kb_per_dof)
+      .set("jacobian_by_module", by_module)
       .set("jacobian_nonzeros", mat_nz)
       .set("jacobian_mb_per_rank_max", mat_mb);
   const TimeParams &tp = scene_.time;

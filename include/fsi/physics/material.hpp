@@ -8,9 +8,9 @@
 //                  (-solid_C10, -solid_C01, -solid_kappa)
 //   either split law + e1/2 (exp(e2 (I1bar - 3)^2) - 1): isotropic Fung-type stiffening, the
 //                  isotropic part of the Lee-Sacks leaflet law (-solid_exp_c1 e1, -solid_exp_c2 e2)
-// For the split laws W(F) gives the energy, P is its closed-form derivative, and the tangent is
-// one forward-mode dual-number pass through that same P code; the unit test checks P against
-// finite differences of W and A against finite differences of P.  A cell with J <= 0 raises
+// For the split laws W(F) gives the energy, P is its closed-form derivative, and the tangent its
+// closed-form second derivative (through the invariants I1, I2, J); the unit test checks P
+// against finite differences of W and A against finite differences of P.  A cell with J <= 0 raises
 // SolveError (inverted element) instead of producing NaN.
 #pragma once
 #include <memory>
@@ -23,6 +23,8 @@ struct Material {
   virtual std::string name() const = 0;
   virtual double energy(const double F[3][3]) const = 0;
   virtual void stress(const double F[3][3], double P[3][3]) const = 0;
+  // Every law here has an energy, so A has the major symmetry A_iJkL = A_kLiJ: the solid's
+  // Jacobian forms only the (i, k) blocks with i <= k and mirrors the others.
   virtual void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const = 0;
   // True when A does not depend on F (small-strain linear elasticity): the stiffness is then a
   // product of P2 gradients, integrated exactly by a 4-point rule.

@@ -12,7 +12,9 @@
 #include "fsi/physics/physics_module.hpp"
 #include "fsi/solver/fluid_solid_split.hpp"
 #include "fsi/solver/pcd.hpp"
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace fsi {
@@ -27,6 +29,7 @@ struct CostCounters {
   long residuals = 0, jacobians = 0, pattern_builds = 0;
   long preconditioner_rebuilds = 0; // forced by -newton_pc_rebuild_krylov
   double residual_time = 0, jacobian_time = 0, nonlinear_solve_time = 0;
+  std::map<std::string, double> module_jacobian_time; // each module's add_jacobian, by name
 };
 
 class CoupledSystem {

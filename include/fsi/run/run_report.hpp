@@ -7,6 +7,7 @@
 #include "fsi/io/output.hpp"
 #include "fsi/run/simulation.hpp"
 #include "fsi/time/step_control.hpp"
+#include <map>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,7 @@ private:
   double setup_time_ = 0, output_time_ = 0, rebuild_time_ = 0;
   std::vector<RemeshReport> remeshes_;
   double jacobian_time_ = 0, residual_time_ = 0, solve_time_ = 0, mesh_motion_time_ = 0;
+  std::map<std::string, double> module_jacobian_time_;
 };
 
 } // namespace fsi
