@@ -16,6 +16,14 @@ check(not any(n.endswith((".tmp", ".partial")) for n in os.listdir(r.dir)), "no 
 s = r.summary
 check(s["converged"] and s["ranks"] == 2 and s["steps"] == 4, "summary: converged, 2 ranks, 4 steps")
 check("fluid (Navier-Stokes, ALE)" in s["physics"], "summary names the physics that ran")
+# Each module's Jacobian cost: its element loop's seconds and rate, within the Jacobian's time.
+bym = s["cost"].get("jacobian_by_module", {})
+fl = bym.get("fluid (Navier-Stokes, ALE)", {})
+check(fl.get("cells") == s["fluid_cells"] and fl.get("cells_per_second_per_rank", 0) > 0,
+      f"summary: the fluid's Jacobian rate ({fl})")
+t_mod = sum(m["seconds"] for m in bym.values())
+check(0 < t_mod <= s["wall_time"]["jacobian_assembly"],
+      f"summary: the modules' Jacobian seconds {t_mod:.3f} within the Jacobian's {s['wall_time']['jacobian_assembly']:.3f}")
 xdmf = open(os.path.join(r.dir, "fields.xdmf")).read()
 refs = re.findall(r'Dimensions="([0-9 ]+)"[^>]*>fields\.h5:(/[^<]+)<', xdmf)
 h5 = h5py.File(os.path.join(r.dir, "fields.h5"), "r")
