@@ -52,13 +52,9 @@ S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa, Expon
   return ex.e1 > 0 ? w + (0.5 * ex.e1) * (expo(ex.e2 * (x * x)) + (-1.0)) : w;
 }
 
-// Its first Piola-Kirchhoff stress in closed form.  With a = J^(-2/3), cof F = J F^-T:
-//   P = 2 c10 a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F,
-// with the exponential term adding dW_e/dI1bar to c10.
-template <typename S>
-void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, Exponential ex,
-                          S P[9]) {
-  S cof[9]; // cofactor matrix, row-major: cof_iJ = dJ/dF_iJ
+// The cofactor matrix of F (row-major: cof_iJ = dJ/dF_iJ) and J = det F; an inverted cell (J <= 0)
+// raises SolveError.
+template <typename S> S cofactor(const S F[9], S cof[9]) {
   cof[0] = F[4] * F[8] - F[5] * F[7];
   cof[1] = F[5] * F[6] - F[3] * F[8];
   cof[2] = F[3] * F[7] - F[4] * F[6];
@@ -68,8 +64,19 @@ void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, E
   cof[6] = F[1] * F[5] - F[2] * F[4];
   cof[7] = F[2] * F[3] - F[0] * F[5];
   cof[8] = F[0] * F[4] - F[1] * F[3];
-  S J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
+  const S J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
   if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
+  return J;
+}
+
+// Its first Piola-Kirchhoff stress in closed form.  With a = J^(-2/3), cof F = J F^-T:
+//   P = 2 c10 a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F,
+// with the exponential term adding dW_e/dI1bar to c10.
+template <typename S>
+void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, Exponential ex,
+                          S P[9]) {
+  S cof[9];
+  const S J = cofactor(F, cof);
   S C[9], I1, I2;
   cauchy_green(F, C, I1, I2);
   S Jinv = power(J, -1.0), a = power(J, -2.0 / 3.0);
@@ -97,17 +104,7 @@ void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, E
 void mooney_rivlin_tangent(const double F[9], double c10, double c01, double kappa, Exponential ex,
                            double A[81]) {
   double cof[9];
-  cof[0] = F[4] * F[8] - F[5] * F[7];
-  cof[1] = F[5] * F[6] - F[3] * F[8];
-  cof[2] = F[3] * F[7] - F[4] * F[6];
-  cof[3] = F[2] * F[7] - F[1] * F[8];
-  cof[4] = F[0] * F[8] - F[2] * F[6];
-  cof[5] = F[1] * F[6] - F[0] * F[7];
-  cof[6] = F[1] * F[5] - F[2] * F[4];
-  cof[7] = F[2] * F[3] - F[0] * F[5];
-  cof[8] = F[0] * F[4] - F[1] * F[3];
-  const double J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
-  if (!(J > 0)) throw SolveError("inverted solid element (det F <= 0)");
+  const double J = cofactor(F, cof);
   double C[9], I1, I2, B[9];
   cauchy_green(F, C, I1, I2);
   for (int i = 0; i < 3; ++i)
