@@ -8,23 +8,13 @@
 namespace fsi {
 namespace {
 
-inline double power(double x, double p) {
-  return std::pow(x, p);
-}
-inline double expo(double x) {
-  return std::exp(x);
-}
-inline double value(double x) {
-  return x;
-}
-
 // C = F^T F (row-major) and its invariants I1 = tr C, I2 = (I1^2 - C:C) / 2 (C symmetric).
-template <typename S> void cauchy_green(const S F[9], S C[9], S &I1, S &I2) {
+void cauchy_green(const double F[9], double C[9], double &I1, double &I2) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       C[3 * i + j] = F[i] * F[j] + F[3 + i] * F[3 + j] + F[6 + i] * F[6 + j];
   I1 = C[0] + C[4] + C[8];
-  S trC2 = C[0] * C[0];
+  double trC2 = C[0] * C[0];
   for (int k = 1; k < 9; ++k)
     trC2 = trC2 + C[k] * C[k];
   I2 = 0.5 * (I1 * I1 - trC2);
@@ -37,24 +27,29 @@ struct Exponential {
   double e1 = 0, e2 = 0; // [Pa], [-]
 };
 
-// Isochoric/volumetric Mooney-Rivlin energy (neo-Hookean when c01 = 0), generic in the scalar.
-template <typename S>
-S mooney_rivlin_energy(const S F[9], double c10, double c01, double kappa, Exponential ex) {
-  // J = det F
-  S J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-        F[2] * (F[3] * F[7] - F[4] * F[6]);
-  if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
-  S C[9], I1, I2;
+// Isochoric/volumetric Mooney-Rivlin energy (neo-Hookean when c01 = 0).
+double mooney_rivlin_energy(const double F[9], double c10, double c01, double kappa,
+                            Exponential ex) {
+  const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                   F[2] * (F[3] * F[7] - F[4] * F[6]);
+  if (!(J > 0)) throw SolveError("inverted solid element (det F <= 0)");
+  double C[9], I1, I2;
   cauchy_green(F, C, I1, I2);
-  S I1b = power(J, -2.0 / 3.0) * I1, I2b = power(J, -4.0 / 3.0) * I2;
-  S Jm1 = J + (-1.0), x = I1b + (-3.0);
-  S w = c10 * x + c01 * (I2b + (-3.0)) + (0.5 * kappa) * (Jm1 * Jm1);
-  return ex.e1 > 0 ? w + (0.5 * ex.e1) * (expo(ex.e2 * (x * x)) + (-1.0)) : w;
+  const double I1b = std::pow(J, -2.0 / 3.0) * I1, I2b = std::pow(J, -4.0 / 3.0) * I2;
+  const double Jm1 = J - 1.0, x = I1b - 3.0;
+  const double w = c10 * x + c01 * (I2b - 3.0) + (0.5 * kappa) * (Jm1 * Jm1);
+  return ex.e1 > 0 ? w + (0.5 * ex.e1) * (std::exp(ex.e2 * (x * x)) - 1.0) : w;
 }
 
-// The cofactor matrix of F (row-major: cof_iJ = dJ/dF_iJ) and J = det F; an inverted cell (J <= 0)
-// raises SolveError.
-template <typename S> S cofactor(const S F[9], S cof[9]) {
+// What the stress and the tangent of a split law share at one F.  With a = J^(-2/3) and
+// g = dW/dI1bar (c10, plus the exponential's share):
+struct SplitState {
+  double cof[9], J, Jinv, C[9], I1, I2, a, x, g; // cof F = J F^-T (row-major), x = I1bar - 3
+};
+
+SplitState split_state(const double F[9], double c10, Exponential ex) {
+  SplitState s;
+  double *cof = s.cof;
   cof[0] = F[4] * F[8] - F[5] * F[7];
   cof[1] = F[5] * F[6] - F[3] * F[8];
   cof[2] = F[3] * F[7] - F[4] * F[6];
@@ -64,63 +59,51 @@ template <typename S> S cofactor(const S F[9], S cof[9]) {
   cof[6] = F[1] * F[5] - F[2] * F[4];
   cof[7] = F[2] * F[3] - F[0] * F[5];
   cof[8] = F[0] * F[4] - F[1] * F[3];
-  const S J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
-  if (!(value(J) > 0)) throw SolveError("inverted solid element (det F <= 0)");
-  return J;
+  s.J = F[0] * cof[0] + F[1] * cof[1] + F[2] * cof[2];
+  if (!(s.J > 0)) throw SolveError("inverted solid element (det F <= 0)");
+  cauchy_green(F, s.C, s.I1, s.I2);
+  s.Jinv = std::pow(s.J, -1.0);
+  s.a = std::pow(s.J, -2.0 / 3.0);
+  s.x = s.a * s.I1 - 3.0;
+  s.g = ex.e1 > 0 ? (ex.e1 * ex.e2) * (s.x * std::exp(ex.e2 * (s.x * s.x))) + c10 : c10;
+  return s;
 }
 
-// Its first Piola-Kirchhoff stress in closed form.  With a = J^(-2/3), cof F = J F^-T:
-//   P = 2 c10 a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F,
-// with the exponential term adding dW_e/dI1bar to c10.
-template <typename S>
-void mooney_rivlin_stress(const S F[9], double c10_, double c01, double kappa, Exponential ex,
-                          S P[9]) {
-  S cof[9];
-  const S J = cofactor(F, cof);
-  S C[9], I1, I2;
-  cauchy_green(F, C, I1, I2);
-  S Jinv = power(J, -1.0), a = power(J, -2.0 / 3.0);
-  S a2 = a * a, x = a * I1 + (-3.0);
-  S c10 = ex.e1 > 0 ? (ex.e1 * ex.e2) * (x * expo(ex.e2 * (x * x))) + c10_ : 0.0 * x + c10_;
-  S s1 = 2.0 * (c10 * a), s2 = (2 * c01) * a2;
-  // coefficient of cof F: -2/3 c10 a I1 / J - 4/3 c01 a^2 I2 / J + kappa (J - 1)
-  S kc =
-      ((-2.0 / 3.0) * (c10 * a * I1) + (-4.0 / 3.0 * c01) * a2 * I2) * Jinv + kappa * (J + (-1.0));
+// The first Piola-Kirchhoff stress in closed form:
+//   P = 2 g a (F - I1/3 F^-T) + 2 c01 a^2 (I1 F - F C - 2/3 I2 F^-T) + kappa (J - 1) cof F.
+void split_stress(const SplitState &s, const double F[9], double c01, double kappa, double P[9]) {
+  const double a2 = s.a * s.a, s1 = 2.0 * (s.g * s.a), s2 = (2 * c01) * a2;
+  // coefficient of cof F: -2/3 g a I1 / J - 4/3 c01 a^2 I2 / J + kappa (J - 1)
+  const double kc = ((-2.0 / 3.0) * (s.g * s.a * s.I1) + (-4.0 / 3.0 * c01) * a2 * s.I2) * s.Jinv +
+                    kappa * (s.J - 1.0);
   for (int i = 0; i < 3; ++i)
     for (int L = 0; L < 3; ++L) {
-      S FC = F[3 * i] * C[L] + F[3 * i + 1] * C[3 + L] + F[3 * i + 2] * C[6 + L];
-      P[3 * i + L] = s1 * F[3 * i + L] + s2 * (I1 * F[3 * i + L] - FC) + kc * cof[3 * i + L];
+      const double FC = F[3 * i] * s.C[L] + F[3 * i + 1] * s.C[3 + L] + F[3 * i + 2] * s.C[6 + L];
+      P[3 * i + L] = s1 * F[3 * i + L] + s2 * (s.I1 * F[3 * i + L] - FC) + kc * s.cof[3 * i + L];
     }
 }
 
-// Its tangent A_mn = dP_m / dF_n (m = 3i + J, n = 3k + L) in closed form.  W is a function of
-// I1, I2, J (with a = J^(-2/3): W = g-integral of a I1, c01 a^2 I2, kappa/2 (J-1)^2), so
+// The tangent A_mn = dP_m / dF_n (m = 3i + J, n = 3k + L) in closed form.  W is a function of
+// I1, I2, J (W = g-integral of a I1, c01 a^2 I2, kappa/2 (J-1)^2), so
 //   A = sum_pq W_pq dp (x) dq + W1 d2I1 + W2 d2I2 + WJ d2J,
 // dI1 = 2F, dI2 = 2(I1 F - F C), dJ = cof F;  d2I1 = 2 d_ik d_JL,
 // d2I2 = 4 F_iJ F_kL + 2 I1 d_ik d_JL - 2 d_ik C_LJ - 2 F_iL F_kJ - 2 (F F^T)_ik d_JL,
 // d2J = (cof_iJ cof_kL - cof_iL cof_kJ) / J.  It replaced a dual-number pass through P (9
 // derivatives carried through every operation): the Mooney-Rivlin Jacobian 1.4x faster
 // (docs/speed.md); checked against finite differences of P in test_materials.
-void mooney_rivlin_tangent(const double F[9], double c10, double c01, double kappa, Exponential ex,
-                           double A[81]) {
-  double cof[9];
-  const double J = cofactor(F, cof);
-  double C[9], I1, I2, B[9];
-  cauchy_green(F, C, I1, I2);
+void split_tangent(const SplitState &s, const double F[9], double c01, double kappa, Exponential ex,
+                   double A[81]) {
+  const double *cof = s.cof, *C = s.C, I1 = s.I1, Ji = s.Jinv, a = s.a, g = s.g;
+  double B[9]; // F F^T
   for (int i = 0; i < 3; ++i)
     for (int k = 0; k < 3; ++k)
       B[3 * i + k] =
           F[3 * i] * F[3 * k] + F[3 * i + 1] * F[3 * k + 1] + F[3 * i + 2] * F[3 * k + 2];
-  const double Ji = 1.0 / J, a = std::pow(J, -2.0 / 3.0), a2 = a * a;
-  const double I1b = a * I1, I2b = a2 * I2, x = I1b - 3.0;
-  double g = c10, gp = 0; // dW/dI1bar and its derivative
-  if (ex.e1 > 0) {
-    const double e = std::exp(ex.e2 * x * x);
-    g += ex.e1 * ex.e2 * x * e;
-    gp = ex.e1 * ex.e2 * e * (1 + 2 * ex.e2 * x * x);
-  }
+  const double a2 = a * a, I1b = a * I1, I2b = a2 * s.I2;
+  const double gp = // dg/dI1bar
+      ex.e1 > 0 ? ex.e1 * ex.e2 * std::exp(ex.e2 * s.x * s.x) * (1 + 2 * ex.e2 * s.x * s.x) : 0.0;
   const double W1 = g * a, W2 = c01 * a2;
-  const double WJ = (-2.0 / 3.0 * g * I1b - 4.0 / 3.0 * c01 * I2b) * Ji + kappa * (J - 1);
+  const double WJ = (-2.0 / 3.0 * g * I1b - 4.0 / 3.0 * c01 * I2b) * Ji + kappa * (s.J - 1);
   const double W11 = gp * a * a, W1J = -2.0 / 3.0 * a * Ji * (gp * I1b + g);
   const double W2J = -4.0 / 3.0 * c01 * a2 * Ji;
   const double WJJ =
@@ -133,19 +116,19 @@ void mooney_rivlin_tangent(const double F[9], double c10, double c01, double kap
       D1[3 * i + L] = 2 * F[3 * i + L];
       D2[3 * i + L] = 2 * (I1 * F[3 * i + L] - FC);
     }
-  const double dd = 2 * W1 + 2 * W2 * I1, WJJi = WJ * Ji;
+  const double dd = 2 * W1 + 2 * W2 * I1, WJ_J = WJ * Ji;
   for (int i = 0; i < 3; ++i)
     for (int Jc = 0; Jc < 3; ++Jc) {
       const int m = 3 * i + Jc;
       // the rank-one terms' coefficients against D1, D2, cof and F
       const double t1 = W11 * D1[m] + W1J * cof[m], t2 = W2J * cof[m];
-      const double tJ = W1J * D1[m] + W2J * D2[m] + WJJ * cof[m] + WJJi * cof[m];
+      const double tJ = W1J * D1[m] + W2J * D2[m] + (WJJ + WJ_J) * cof[m];
       const double tF = 4 * W2 * F[m];
       for (int k = 0; k < 3; ++k)
         for (int L = 0; L < 3; ++L) {
           const int n = 3 * k + L;
           double v = t1 * D1[n] + t2 * D2[n] + tJ * cof[n] + tF * F[n];
-          v -= WJJi * cof[3 * i + L] * cof[3 * k + Jc] + 2 * W2 * F[3 * i + L] * F[3 * k + Jc];
+          v -= WJ_J * cof[3 * i + L] * cof[3 * k + Jc] + 2 * W2 * F[3 * i + L] * F[3 * k + Jc];
           if (i == k) v += (Jc == L ? dd : 0.0) - 2 * W2 * C[3 * L + Jc];
           if (Jc == L) v -= 2 * W2 * B[3 * i + k];
           A[9 * m + n] = v;
@@ -169,11 +152,12 @@ struct SplitLaw : Material {
     return mooney_rivlin_energy(&F[0][0], c10, c01, kappa, ex);
   }
   void stress(const double F[3][3], double P[3][3]) const override {
-    mooney_rivlin_stress(&F[0][0], c10, c01, kappa, ex, &P[0][0]);
+    split_stress(split_state(&F[0][0], c10, ex), &F[0][0], c01, kappa, &P[0][0]);
   }
   void tangent(const double F[3][3], double P[3][3], double A[3][3][3][3]) const override {
-    mooney_rivlin_stress(&F[0][0], c10, c01, kappa, ex, &P[0][0]);
-    mooney_rivlin_tangent(&F[0][0], c10, c01, kappa, ex, &A[0][0][0][0]);
+    const SplitState s = split_state(&F[0][0], c10, ex); // one state for both
+    split_stress(s, &F[0][0], c01, kappa, &P[0][0]);
+    split_tangent(s, &F[0][0], c01, kappa, ex, &A[0][0][0][0]);
   }
 };
 

@@ -101,7 +101,8 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
   if (sim.ale().moving()) active.push_back("mesh motion: " + sim.ale().motion()->name());
   Json dofs, times, iters, cost, j;
   // Each module's element loop (its add_jacobian: kernels and the scatter into the matrix):
-  // seconds (max over ranks) and cells per second per rank.  The same modules on every rank.
+  // seconds (max over ranks) and cells per second per rank, from the last mesh's cell counts (a
+  // remeshing run's rate is approximate).  The same modules on every rank.
   Json by_module;
   for (auto &m : sim.system().modules()) {
     auto it = module_jacobian_time_.find(m->name());
