@@ -9,6 +9,7 @@
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
 #include "fsi/solver/pcd.hpp"
+#include "fsi/solver/schur_bilu.hpp"
 
 #include <memory>
 #include <unistd.h>
@@ -217,6 +218,7 @@ int run(MPI_Comm comm) {
 int main(int argc, char **argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   fsi::register_pcd_preconditioner();
+  fsi::register_schur_bilu_preconditioner();
   int code = 0;
   MPI_Comm comm = PETSC_COMM_WORLD;
   try {

@@ -2,6 +2,7 @@
 #include "fsi/discretization/sparsity.hpp"
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
+#include "fsi/solver/schur_bilu.hpp"
 
 #include <cmath>
 
@@ -102,6 +103,7 @@ void CoupledSystem::create_solver() {
   // test, DIVERGED_DTOL with it).  Failed steps are caught by -snes_max_it and step cutting;
   // -snes_divergence_tolerance still sets it.
   FSI_CALL(SNESSetDivergenceTolerance(snes_, -1.0));
+  opt::choice("pc_schur_bilu_precision", "single", {"single", "double"}); // one line, not PETSc's
   FSI_CALL(SNESSetFromOptions(snes_));
   KSP ksp;
   PC pc;
@@ -126,6 +128,7 @@ void CoupledSystem::create_solver() {
     FSI_CALL(PCFieldSplitSetIS(pc, "velocity", space_.is_velocity));
     FSI_CALL(PCFieldSplitSetIS(pc, "pressure", space_.is_pressure));
   }
+  set_schur_bilu_fields(pc, space_.is_velocity, space_.is_pressure);
 }
 
 // Called with each Newton residual norm, before that iteration's linear solve.  Near the
