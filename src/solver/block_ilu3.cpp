@@ -160,9 +160,8 @@ void BlockIlu3::analyse(Mat A, const std::vector<PetscInt> &rows,
     bj_.insert(bj_.end(), list.begin(), list.end());
     bi_[I + 1] = (int)bj_.size();
   }
-  vf_.clear();
-  vd_.clear();
-  (single_ ? vf_.shrink_to_fit() : vd_.shrink_to_fit());
+  std::vector<float>().swap(vf_); // the old pattern's factor freed before the new one
+  std::vector<double>().swap(vd_);
   if (single_) // + 1: the last block's third column is loaded as 4 floats
     vf_.assign(9 * bj_.size() + 1, 0.0f);
   else
