@@ -3,7 +3,9 @@ include/fsi/fluid_solid_split.hpp), FSI tube on 2 ranks:
 - it solves the same problem: equal to MUMPS (fluxes, wall probe) over 10 steps;
 - it holds the Krylov count when the mesh is refined at a fixed dt (the solid part of the velocity
   block stiffens 4x per halving): measured 22.1 -> 23.5 per Newton step (1.06x) where block ILU
-  (fieldsplit_ilu) grows 31.6 -> 51.5 (1.63x), h 1.9 -> 0.95 mm, dt 2e-4 s;
+  (fieldsplit_ilu) grows 31.6 -> 51.5 (1.63x), h 1.9 -> 0.95 mm, dt 2e-4 s (with the RCM
+  numbering, default since 2026-12-04: 21.1 -> 22.2-22.4 against 35.4-36.4 -> 50.8, 1.39-1.43x;
+  the 2-rank counts vary by ~1 from run to run);
 - it helps a stiff wall (E x 10^4): measured 188 against 534 Krylov per Newton step over 3 steps
   (110 against 531 over 10);
 - asked for on a scene without both physics, it is a one-line error."""
@@ -30,7 +32,8 @@ if d.code == 0 and s.code == 0:
 fixed = ["-ts_dt", "2e-4", "-ts_max_steps", "3", "-out_fields_every", "0"]
 _, g, _ = krylov_growth(TUBE, ("fieldsplit_ilu", "fieldsplit_fsi"), ("0.0019", "0.00095"), fixed)
 g_ilu, g_fsi = g["fieldsplit_ilu"], g["fieldsplit_fsi"]
-check(g_ilu > 1.4, f"the case is hard for block ILU (x{g_ilu:.2f} per halving)")
+check(g_ilu > g_fsi + 0.25,
+      f"the case is hard for block ILU: x{g_ilu:.2f} per halving against the split's x{g_fsi:.2f}")
 check(g_fsi < 1.2, f"the split's Krylov count per Newton step grows x{g_fsi:.2f} < 1.2 per halving")
 
 # Stiff wall.
