@@ -1,12 +1,12 @@
 // Remeshing: the new fluid volume with gmsh 4.8 and the new mesh file (remesh_internal.hpp).
 #include "fsi/ale/mesh_motion.hpp"
 #include "fsi/discretization/p2tet.hpp"
+#include "fsi/mesh/gmsh_module.hpp"
 #include "remesh_internal.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <gmsh.h>
 #include <numeric>
 #include <set>
 
@@ -179,86 +179,17 @@ static std::vector<Tet> gmsh_volume(std::vector<std::array<double, 3>> &x,
                                     const std::vector<Tri> &tris, const std::vector<double> &mask,
                                     const std::vector<std::array<double, 4>> &gaps,
                                     const RemeshOptions &o) {
-  const double hmax = o.hmax;
-  gmsh::initialize(0, nullptr, false);
-  std::vector<Tet> tets;
-  try {
-    gmsh::option::setNumber("General.Terminal", o.verbose ? 1 : 0);
-    gmsh::option::setNumber("Mesh.MeshOnlyEmpty", 1);
-    gmsh::option::setNumber("Mesh.Algorithm3D", 1); // Delaunay, sizes from the boundary
-    if (hmax > 0) gmsh::option::setNumber("Mesh.MeshSizeMax", hmax);
-    gmsh::model::add("fluid");
-    const auto surfaces = boundary_surfaces(tris, mask);
-    std::vector<char> added(x.size(), 0);
-    std::vector<int> surface_tags;
-    for (size_t s = 0; s < surfaces.size(); ++s) {
-      const int tag = (int)s + 1;
-      gmsh::model::addDiscreteEntity(2, tag);
-      std::vector<std::size_t> ntags, etags;
-      std::vector<double> coords;
-      for (int t : surfaces[s])
-        for (int v : tris[t]) {
-          etags.push_back(v + 1);
-          if (added[v]) continue;
-          added[v] = 1;
-          ntags.push_back(v + 1);
-          coords.insert(coords.end(), x[v].begin(), x[v].end());
-        }
-      gmsh::model::mesh::addNodes(2, tag, ntags, coords);
-      gmsh::model::mesh::addElementsByType(tag, 2, {}, etags);
-      surface_tags.push_back(tag);
-    }
-    gmsh::model::addDiscreteEntity(3, 1, surface_tags);
-    if (!gaps.empty()) // sizes grow away from a gap at 1/2 per unit distance
-      gmsh::model::mesh::setSizeCallback([&gaps](int, int, double px, double py, double pz) {
-        double s = 1e22;
-        for (auto &g : gaps) {
-          const double r = std::sqrt((px - g[0]) * (px - g[0]) + (py - g[1]) * (py - g[1]) +
-                                     (pz - g[2]) * (pz - g[2]));
-          s = std::min(s, g[3] + 0.5 * r);
-        }
-        return s;
-      });
-    gmsh::model::mesh::createGeometry({{3, 1}});
-    gmsh::model::mesh::generate(3);
-    // gmsh's tetrahedron optimiser once more, forced: generate() leaves flat slivers on four
-    // boundary vertices across a thin gap (measured: skewness 1.000 between two plates' top
-    // edges 0.5 mm apart), which its swaps remove (0.903 there).
-    gmsh::model::mesh::optimize("", true, 3);
-    // Nodes come back renumbered: tell the kept ones by their (exact) coordinates; new nodes
-    // are those of the new cells.
-    std::vector<std::size_t> etags, enodes;
-    gmsh::model::mesh::getElementsByType(4, etags, enodes, 1);
-    std::vector<std::size_t> ntags;
-    std::vector<double> coords, param;
-    gmsh::model::mesh::getNodes(ntags, coords, param, -1, -1, false, false);
-    std::map<std::size_t, std::array<double, 3>> pos;
-    for (size_t i = 0; i < ntags.size(); ++i)
-      pos[ntags[i]] = {coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]};
-    std::map<std::array<double, 3>, int> known;
-    for (size_t v = 0; v < x.size(); ++v)
-      if (added[v]) known[x[v]] = (int)v;
-    auto index = [&](std::size_t tag) {
-      const auto &p = pos.at(tag);
-      auto it = known.find(p);
-      if (it != known.end()) return it->second;
-      x.push_back(p);
-      return known[p] = (int)x.size() - 1;
-    };
-    for (size_t k = 0; k < etags.size(); ++k)
-      tets.push_back({index(enodes[4 * k]), index(enodes[4 * k + 1]), index(enodes[4 * k + 2]),
-                      index(enodes[4 * k + 3])});
-  } catch (...) { // gmsh throws std::string as well as std::exception
-    std::string err;
-    try {
-      gmsh::logger::getLastError(err);
-    } catch (...) {
-    }
-    gmsh::finalize();
-    throw RemeshError("gmsh could not mesh the deformed fluid boundary (" +
-                      (err.empty() ? std::string("no message") : err) + ")");
+  std::vector<std::vector<std::array<int, 3>>> surfaces;
+  for (const auto &list : boundary_surfaces(tris, mask)) {
+    surfaces.emplace_back();
+    for (int t : list)
+      surfaces.back().push_back(tris[t]);
   }
-  gmsh::finalize();
+  std::vector<Tet> tets;
+  const gmsh_module::Status st =
+      gmsh_module::mesh_volume(x, surfaces, gaps, o.hmax, o.verbose, tets);
+  if (st.code)
+    throw RemeshError("gmsh could not mesh the deformed fluid boundary (" + st.message + ")");
   if (tets.empty()) throw RemeshError("gmsh returned no fluid cells for the deformed boundary");
   return tets;
 }

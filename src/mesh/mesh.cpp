@@ -1,8 +1,8 @@
 #include "fsi/mesh/mesh.hpp"
+#include "fsi/mesh/gmsh_module.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <fstream>
-#include <gmsh.h>
 #include <sstream>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -92,46 +92,20 @@ static void generate_with_gmsh(const std::string &geo, double h,
       throw InputError("option -mesh_params expects NAME=VALUE items, got '" + p + "'");
     args.insert(args.end(), {"-setnumber", p.substr(0, eq), p.substr(eq + 1)});
   }
-  std::vector<char *> argv;
-  for (auto &a : args)
-    argv.push_back(const_cast<char *>(a.c_str()));
-  gmsh::initialize((int)argv.size(), argv.data(), false);
-  gmsh::option::setNumber("General.Terminal", 0);
-  gmsh::option::setNumber("General.Verbosity", 1);
   std::string tmp = out.substr(0, out.size() - 4) + ".tmp" + std::to_string(getpid()) + ".msh";
-  try {
-    gmsh::open(geo);
-    // Refuse sizes that would swamp memory (gmsh aborts, or the machine swaps) before meshing:
-    // the bounding box filled with regular tetrahedra of edge h (volume h^3 / (6 sqrt 2)), an
-    // upper estimate of the cell count.
-    double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
-    const double cells = (x1 - x0) * (y1 - y0) * (z1 - z0) * 6 * std::sqrt(2.0) / (h * h * h);
-    if (!(cells <= max_cells)) {
-      gmsh::finalize();
-      char msg[256];
-      std::snprintf(msg, sizeof msg, "%.3g cells (at most; limit -mesh_max_cells %.3g)", cells,
-                    max_cells);
-      throw InputError("option -mesh_h " + opt_number(h) + " would mesh " + geo + " into up to " +
-                       msg + ": give a larger -mesh_h (or raise -mesh_max_cells)");
-    }
-    gmsh::model::mesh::generate(3);
-    gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-    gmsh::option::setNumber("Mesh.Binary", 1);
-    gmsh::write(tmp);
-  } catch (InputError &) {
-    throw;
-  } catch (...) { // gmsh's own last error (a .geo's Error(...) names the bad parameter)
-    std::string err;
-    try {
-      gmsh::logger::getLastError(err);
-    } catch (...) {
-    }
-    gmsh::finalize();
-    throw InputError("gmsh failed to mesh " + geo + " at h = " + std::to_string(h) +
-                     (err.empty() ? "" : " (" + err + ")") + ": check the .geo and the size");
+  const gmsh_module::Status st = gmsh_module::mesh_geo(args, geo, h, max_cells, tmp);
+  if (st.code == 1) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg, "%.3g cells (at most; limit -mesh_max_cells %.3g)", st.cells,
+                  max_cells);
+    throw InputError("option -mesh_h " + opt_number(h) + " would mesh " + geo + " into up to " +
+                     msg + ": give a larger -mesh_h (or raise -mesh_max_cells)");
   }
-  gmsh::finalize();
+  if (st.code) std::remove(tmp.c_str()); // whatever gmsh left
+  if (st.code) // gmsh's own last error (a .geo's Error(...) names the bad parameter)
+    throw InputError("gmsh failed to mesh " + geo + " at h = " + std::to_string(h) +
+                     (st.message.empty() ? "" : " (" + st.message + ")") +
+                     ": check the .geo and the size");
   if (std::rename(tmp.c_str(), out.c_str()) != 0)
     throw InputError("cannot write mesh cache file " + out);
 }
