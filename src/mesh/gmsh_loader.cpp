@@ -25,7 +25,8 @@ void *module() {
     std::string dir(exe, n);
     tried.push_back(dir.substr(0, dir.find_last_of('/')) + "/libfsi_gmsh.so");
   }
-  tried.push_back(std::string(FSI_GMSH_MODULE_DIR) + "/libfsi_gmsh.so");
+  const std::string built = std::string(FSI_GMSH_MODULE_DIR) + "/libfsi_gmsh.so";
+  if (tried.empty() || tried[0] != built) tried.push_back(built);
   std::string why;
   for (auto &path : tried) {
     handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -101,11 +101,12 @@ static void generate_with_gmsh(const std::string &geo, double h,
     throw InputError("option -mesh_h " + opt_number(h) + " would mesh " + geo + " into up to " +
                      msg + ": give a larger -mesh_h (or raise -mesh_max_cells)");
   }
-  if (st.code) std::remove(tmp.c_str()); // whatever gmsh left
-  if (st.code) // gmsh's own last error (a .geo's Error(...) names the bad parameter)
+  if (st.code) {              // gmsh's own last error (a .geo's Error(...) names the bad parameter)
+    std::remove(tmp.c_str()); // whatever gmsh left
     throw InputError("gmsh failed to mesh " + geo + " at h = " + std::to_string(h) +
                      (st.message.empty() ? "" : " (" + st.message + ")") +
                      ": check the .geo and the size");
+  }
   if (std::rename(tmp.c_str(), out.c_str()) != 0)
     throw InputError("cannot write mesh cache file " + out);
 }
