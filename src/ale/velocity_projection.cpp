@@ -253,9 +253,10 @@ ProjectionReport project_divergence_free(const Space &space, const std::vector<P
   FSI_CALL(KSPSetOptionsPrefix(ksp, "remesh_projection_"));
   FSI_CALL(KSPSetOperators(ksp, Af, Af));
   // Default: MUMPS LU (exact: the run is the same on any rank count, restarts reproduce).
-  // -remesh_projection_pc_type fieldsplit solves it iteratively, twice as fast on the valve
-  // (FGMRES on a Schur factorisation: the velocity mass by CG + Jacobi, the P1 Schur complement
-  // B diag(M)^-1 B^T by BoomerAMG; see docs/remeshing.md), to its tolerance.
+  // -remesh_projection_pc_type fieldsplit solves it iteratively, to its tolerance (FGMRES on a
+  // Schur factorisation: the velocity mass by CG + Jacobi, the P1 Schur complement
+  // B diag(M)^-1 B^T by BoomerAMG; docs/remeshing.md): 2x faster on the CI valve, 5x on the
+  // paper-size one, where the LU needs 9 GB per rank (the preset fieldsplit_fsi_lu does this).
   FSI_CALL(KSPSetType(ksp, KSPPREONLY));
   PC pc;
   FSI_CALL(KSPGetPC(ksp, &pc));
