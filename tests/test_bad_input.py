@@ -40,6 +40,11 @@ solid_cases = [
     ("unknown material", ["-solid_material", "ogden"], "ogden"),
     ("Mooney-Rivlin without kappa", ["-solid_kappa", "-5"], "solid_kappa"),
     ("mesh without the solid region", ["-solid_region", "tissue"], "tissue"),
+    ("fibre options without a fibre family", ["-solid_fibre_c1", "1e4"], "solid_fibres"),
+    ("chord fibres without commissures", ["-solid_fibres", "chord", "-solid_fibre_c1", "1e4",
+                                          "-solid_fibre_c2", "10"], "solid_fibre_commissures"),
+    ("negative fibre modulus", ["-solid_fibres", "circumferential", "-solid_fibre_c1", "-1",
+                                "-solid_fibre_c2", "10"], "solid_fibre_c1"),
     ("unknown solid boundary type", ["-bc_zmax_type", "pinned"], "pinned"),
 ]
 # A checkpoint of the Poiseuille scene, then restarts that do not match it.

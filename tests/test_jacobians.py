@@ -1,7 +1,7 @@
 """Jacobian checks for every kernel: PETSc's -snes_test_jacobian compares our assembled Jacobian
 with a finite-difference one at every Newton iterate, on tiny scenes, one per module or term:
 fluid on a moving mesh (convective and skew-symmetric), Stokes, each solid material (static and dynamic; Mooney-Rivlin with the
-exponential stiffening), the follower pressure,
+exponential stiffening and with a fibre family), the follower pressure,
 the conservative interface, the backflow stabilisation and the Windkessel outlet.  Each case runs with the
 finite-difference step -snes_test_err 1e-9, and 1e-7 if needed; it fails when, at both, some
 ||J - J_fd||_F / ||J||_F exceeds TOL: on a right Jacobian the discrepancy is the truncation error
@@ -36,6 +36,15 @@ CASES = [
     ("solid, Mooney-Rivlin + exponential stiffening", CANTILEVER[:1], CANTILEVER[1:] + [
         "-solid_material", "mooney_rivlin", "-solid_C10", "1.5e5", "-solid_C01", "2e4",
         "-solid_kappa", "1e7", "-solid_exp_c1", "1e6", "-solid_exp_c2", "1e3",
+        "-allow_unused_options"]),
+    # A fibre family along x (chord fibres of the sector 0-180 degrees), on both sides of I4 = 1:
+    # the tension-only switch is a kink of W at the rest state that finite differences straddle
+    # (checked at the material level in solid_material_tangents instead).
+    ("solid, Mooney-Rivlin + fibres", CANTILEVER[:1], CANTILEVER[1:] + [
+        "-solid_material", "mooney_rivlin", "-solid_C10", "1.5e5", "-solid_C01", "2e4",
+        "-solid_kappa", "1e7", "-solid_fibres", "chord", "-solid_fibre_commissures", "0,180",
+        "-solid_fibre_c1", "1e5", "-solid_fibre_c2", "10", "-solid_fibre_tension_only", "false",
+        "-pc_type", "lu",
         "-allow_unused_options"]),
     ("solid, neo-Hookean, generalized-alpha", CANTILEVER[:1], CANTILEVER[1:] + [
         "-ts_type", "alpha", "-ts_dt", "0.01", "-bc_zmax_value", "2e4",

@@ -1,6 +1,7 @@
 // Constitutive laws: P against finite differences of W, the tangent against finite differences
 // of P (relative error < 1e-6, issue: hyperelastic solid), inverted elements and bad parameters.
 #include "fsi/common.hpp"
+#include "fsi/physics/fibres.hpp"
 #include "fsi/physics/material.hpp"
 
 #include <algorithm>
@@ -121,6 +122,85 @@ int main() {
     }
     check(worst < 0.005, "mooney_rivlin+exp: uniaxial nominal stress within 0.5% of closed form",
           worst);
+  }
+  // The fibre family (fibres.hpp): P against finite differences of W_f, the tangent against
+  // finite differences of P, in tension along a0 (1.5 times F above: I4 1.32) and zero
+  // stress and stiffness under fibre compression.
+  {
+    FibreFamily f;
+    f.kind = FibreFamily::Circumferential;
+    f.c1 = 5e3;
+    f.c2 = 20;
+    const double X[3] = {0.3, 0.4, 0.1}, a[3] = {-0.8, 0.6, 0}; // e_theta at X
+    double ad[3];
+    f.direction(X, ad);
+    check(std::fabs(ad[0] - a[0]) + std::fabs(ad[1] - a[1]) + std::fabs(ad[2]) < 1e-15,
+          "fibres: circumferential direction", std::fabs(ad[0] - a[0]));
+    double Ff[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        Ff[i][j] = 1.5 * F[i][j];
+    double P0[3][3] = {}, A[3][3][3][3] = {}, Pt[3][3] = {};
+    f.add_stress(Ff, a, P0);
+    f.add_tangent(Ff, a, Pt, A);
+    double eP = 0, nP = 0, eA = 0, nA = 0;
+    for (int k = 0; k < 3; ++k)
+      for (int L = 0; L < 3; ++L) {
+        const double h = 1e-7;
+        double Fp[3][3], Fm[3][3], Pp[3][3] = {}, Pm[3][3] = {};
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            Fp[i][j] = Fm[i][j] = Ff[i][j];
+        Fp[k][L] += h;
+        Fm[k][L] -= h;
+        eP += std::pow((f.energy(Fp, a) - f.energy(Fm, a)) / (2 * h) - P0[k][L], 2);
+        nP += P0[k][L] * P0[k][L];
+        f.add_stress(Fp, a, Pp);
+        f.add_stress(Fm, a, Pm);
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J) {
+            eA += std::pow((Pp[i][J] - Pm[i][J]) / (2 * h) - A[i][J][k][L], 2);
+            nA += A[i][J][k][L] * A[i][J][k][L];
+          }
+      }
+    double Fa[3] = {};
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J)
+        Fa[i] += Ff[i][J] * a[J];
+    std::printf("fibres: I4 = %.3f at the test F\n", Fa[0] * Fa[0] + Fa[1] * Fa[1] + Fa[2] * Fa[2]);
+    check(nP > 0 && std::sqrt(eP / nP) < 1e-6, "fibres: P = dW/dF (relative error)",
+          std::sqrt(eP / nP));
+    check(nA > 0 && std::sqrt(eA / nA) < 1e-6, "fibres: tangent = dP/dF (relative error)",
+          std::sqrt(eA / nA));
+    // Uniaxial stretch l along a0 = e_x: P_xx = 2 l W'(l^2) = 2 l c1 c2 E exp(c2 E^2), E = l^2 - 1.
+    const double ex[3] = {1, 0, 0}, l = 1.1, E = l * l - 1;
+    double Fu[3][3] = {{l, 0, 0}, {0, 1, 0}, {0, 0, 1}}, Pu[3][3] = {};
+    f.add_stress(Fu, ex, Pu);
+    const double exact = 2 * l * f.c1 * f.c2 * E * std::exp(f.c2 * E * E);
+    check(std::fabs(Pu[0][0] / exact - 1) < 1e-14, "fibres: uniaxial stress along a0", Pu[0][0]);
+    double Fc[3][3] = {{0.9, 0, 0}, {0, 1.1, 0}, {0, 0, 1}}, Pc[3][3] = {}, Ac[3][3][3][3] = {};
+    f.add_tangent(Fc, ex, Pc, Ac);
+    double nc = 0;
+    for (auto &r : Pc)
+      nc += std::fabs(r[0]) + std::fabs(r[1]) + std::fabs(r[2]);
+    for (auto &b : Ac)
+      for (auto &c : b)
+        for (auto &d : c)
+          nc += std::fabs(d[0]) + std::fabs(d[1]) + std::fabs(d[2]);
+    check(nc == 0, "fibres: no stress or stiffness in compression", nc);
+    // Chord directions: commissures at 30, 150, 270 deg; the leaflet between 30 and 150 deg has
+    // its chord along -x (normal to its bisector at 90 deg), the one across 270 -> 30 deg
+    // (bisector 330 deg) along (sin 330, ... ) = (0.5, 0.866).
+    FibreFamily g = f;
+    g.kind = FibreFamily::Chord;
+    g.commissures = {M_PI / 6, 5 * M_PI / 6, 1.5 * M_PI};
+    const double X1[3] = {0.1, 0.5, 0}, X2[3] = {0.5, -0.1, 0};
+    double a1[3], a2[3];
+    g.direction(X1, a1);
+    g.direction(X2, a2);
+    const double e1c = std::fabs(a1[0] + 1) + std::fabs(a1[1]);
+    const double e2c = std::fabs(a2[0] - 0.5) + std::fabs(a2[1] - std::sqrt(0.75));
+    check(e1c < 1e-14 && e2c < 1e-14, "fibres: chord directions of two sectors", e1c + e2c);
   }
   // Bad exponential parameters.
   threw = false;

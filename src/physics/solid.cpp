@@ -30,6 +30,7 @@ SolidParams SolidParams::from_options() {
   if (p.quad_degree < 2 || p.quad_degree > 10)
     throw InputError("option -solid_quad_degree must be in [2, 10]");
   p.direct_insertion = opt::flag("solid_direct_insertion", true);
+  p.fibres = FibreFamily::from_options(opt::string("solid_material", "linear"));
   return p;
 }
 
@@ -58,6 +59,32 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh,
     p2_tet(l.data(), gl, n.data(), dn);
     N_.push_back(n);
   }
+}
+
+namespace {
+// The reference point at barycentric coordinates l of an affine cell with vertices X.
+void point(const double *l, const double X[4][3], double x[3]) {
+  for (int d = 0; d < 3; ++d)
+    x[d] = l[0] * X[0][d] + l[1] * X[1][d] + l[2] * X[2][d] + l[3] * X[3][d];
+}
+void add_fibre_stress_at(const FibreFamily &f, const double F[3][3], const double x[3],
+                         double P[3][3]) {
+  double a[3];
+  f.direction(x, a);
+  f.add_stress(F, a, P);
+}
+} // namespace
+
+void SolidModule::stress(const double F[3][3], const double X[3], double P[3][3]) const {
+  material_->stress(F, P);
+  if (p_.fibres.active()) add_fibre_stress_at(p_.fibres, F, X, P);
+}
+
+void SolidModule::add_fibre_stress(const double F[3][3], const double *l, const double X[4][3],
+                                   double P[3][3]) const {
+  double x[3];
+  point(l, X, x);
+  add_fibre_stress_at(p_.fibres, F, x, P);
 }
 
 void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
@@ -93,6 +120,7 @@ void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
             F[i][J] += u[b][i] * dN[b][J];
         }
       material_->stress(F, P);
+      if (p_.fibres.active()) add_fibre_stress(F, l, X, P);
       double f[3]; // inertia minus body force, per unit reference volume
       for (int i = 0; i < 3; ++i)
         f[i] = rho * (a[i] - g_scale * p_.gravity[i]);
@@ -162,6 +190,12 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
             for (int i = 0; i < 3; ++i)
               F[i][J] += u[b][i] * dN[b][J];
         material_->tangent(F, P, A);
+        if (p_.fibres.active()) {
+          double Xq[3], a[3];
+          point(l, X, Xq);
+          p_.fibres.direction(Xq, a);
+          p_.fibres.add_tangent(F, a, P, A);
+        }
       }
       const double wk = jacobian_rule_.weight[q] * geo.absdet * cu;
       for (int i = 0; i < 3; ++i)
@@ -223,6 +257,12 @@ SolidEnergy SolidModule::energy(const PetscScalar *V, const PetscScalar *D) cons
       const double w = rule_.weight[q] * geo.absdet;
       e.kinetic += 0.5 * w * p_.rho * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       e.strain += w * material_->energy(F);
+      if (p_.fibres.active()) {
+        double Xq[3], a[3];
+        point(rule_.lambda[q].data(), X, Xq);
+        p_.fibres.direction(Xq, a);
+        e.strain += w * p_.fibres.energy(F, a);
+      }
     }
   }
   double loc[2] = {e.kinetic, e.strain}, glob[2];

@@ -173,7 +173,10 @@ std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
           F[i][j] += uc[a][i] * dN[a][j];
-    solid_->material().stress(F, P);
+    const double Xc[3] = {0.25 * (X[0][0] + X[1][0] + X[2][0] + X[3][0]),
+                          0.25 * (X[0][1] + X[1][1] + X[2][1] + X[3][1]),
+                          0.25 * (X[0][2] + X[1][2] + X[2][2] + X[3][2])};
+    solid_->stress(F, Xc, P);
     const double J = F[0][0] * (F[1][1] * F[2][2] - F[1][2] * F[2][1]) -
                      F[0][1] * (F[1][0] * F[2][2] - F[1][2] * F[2][0]) +
                      F[0][2] * (F[1][0] * F[2][1] - F[1][1] * F[2][0]);

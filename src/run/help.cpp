@@ -116,6 +116,16 @@ const std::vector<Section> &sections() {
         {"solid_exp_c1", "0", "Pa",
          "neo_hookean/mooney_rivlin + c1/2 (exp(c2 (I1bar-3)^2) - 1): collagen-like stiffening"},
         {"solid_exp_c2", "0", "-", "exponent c2 of that term (both 0 or both positive)"},
+        {"solid_fibres", "none", "-",
+         "none | circumferential | chord: a fibre family c1/2 (exp(c2 (I4-1)^2) - 1), I4 > 1, "
+         "about "
+         "the z axis"},
+        {"solid_fibre_c1", "(with solid_fibres)", "Pa", "fibre modulus c1"},
+        {"solid_fibre_c2", "(with solid_fibres)", "-", "fibre exponent c2"},
+        {"solid_fibre_tension_only", "true", "-",
+         "fibres carry no compression (I4 < 1); false: the same law on both sides"},
+        {"solid_fibre_commissures", "(chord)", "deg",
+         "commissure angles about z; fibres run along the chord of each sector between them"},
         {"solid_quad_degree", "3", "-", "quadrature degree (3: 8 points, 4: 14, 2: 4)"},
         {"solid_direct_insertion", "true", "-", "element matrices straight into the AIJ arrays"}}},
       {"Contact between solid pieces (-physics contact; gap_seal)",

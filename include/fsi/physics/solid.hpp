@@ -8,7 +8,8 @@
 // Options (prefix -solid_): region NAME (physical volume, default "solid"), rho [kg/m^3],
 // gravity gx,gy,gz [m/s^2] (times -solid_gravity_waveform ...; in steady load stepping a linear
 // ramp over the load steps by default), quad_degree (default 4), direct_insertion, and the material
-// (material.hpp).  A manufactured solution (exact_solid.hpp) adds its body force.
+// (material.hpp) with an optional fibre family (fibres.hpp).  A manufactured solution
+// (exact_solid.hpp) adds its body force.
 #pragma once
 #include "fsi/analytic/analytic.hpp"
 #include "fsi/analytic/exact_solid.hpp"
@@ -16,6 +17,7 @@
 #include "fsi/discretization/p2tet.hpp"
 #include "fsi/discretization/space.hpp"
 #include "fsi/mesh/mesh.hpp"
+#include "fsi/physics/fibres.hpp"
 #include "fsi/physics/material.hpp"
 #include "fsi/physics/physics_module.hpp"
 
@@ -28,6 +30,7 @@ struct SolidParams {
   Waveform gravity_wave; // its time dependence (steady: ramped with the load steps)
   int quad_degree = 4;
   bool direct_insertion = true;
+  FibreFamily fibres; // added to the material where active (fibres.hpp)
   static SolidParams from_options();
 };
 
@@ -41,7 +44,10 @@ public:
   // material_X: the material (stress-free) reference, 3 per local vertex; kept by reference.
   SolidModule(const Space &space, const Mesh &mesh, const std::vector<double> &material_X,
               const SolidParams &p, std::unique_ptr<Material> material, const ExactSolid *exact);
-  std::string name() const override { return "solid (" + material_->name() + ")"; }
+  std::string name() const override {
+    return "solid (" + material_->name() + (p_.fibres.active() ? " + " + p_.fibres.name() : "") +
+           ")";
+  }
   void add_residual(const StepContext &ctx, PetscScalar *F) override;
   void add_jacobian(const StepContext &ctx, Mat J) override;
   PetscInt n_cells() const override { return (PetscInt)cells_.size(); }
@@ -52,6 +58,8 @@ public:
   }
   const std::vector<PetscInt> &cells() const { return cells_; }
   const Material &material() const { return *material_; }
+  // The first Piola-Kirchhoff stress at reference point X: the material's plus the fibres'.
+  void stress(const double F[3][3], const double X[3], double P[3][3]) const;
   const SolidParams &params() const { return p_; }
   const std::vector<double> &material_X() const { return material_X_; }
   // Kinetic and stored energy of velocity V and displacement D (local arrays).
@@ -59,6 +67,8 @@ public:
 
 private:
   void reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const;
+  void add_fibre_stress(const double F[3][3], const double *l, const double X[4][3],
+                        double P[3][3]) const;
   const Space &space_;
   const std::vector<double> &material_X_;
   SolidParams p_;
