@@ -87,9 +87,11 @@ FibreFamily FibreFamily::from_options(const std::string &material_kind) {
   const std::string kind =
       opt::choice("solid_fibres", "none", {"none", "circumferential", "chord"});
   if (kind == "none") {
-    if (opt::has("solid_fibre_c1") || opt::has("solid_fibre_c2") ||
-        opt::has("solid_fibre_commissures") || opt::has("solid_fibre_tension_only"))
-      throw InputError("options -solid_fibre_* need -solid_fibres circumferential or chord");
+    for (const char *name : {"solid_fibre_c1", "solid_fibre_c2", "solid_fibre_commissures",
+                             "solid_fibre_tension_only"})
+      if (opt::has(name))
+        throw InputError(std::string("option -") + name +
+                         " needs -solid_fibres circumferential or chord");
     return f;
   }
   if (material_kind == "linear" || material_kind == "svk")
