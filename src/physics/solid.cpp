@@ -61,30 +61,19 @@ SolidModule::SolidModule(const Space &space, const Mesh &mesh,
   }
 }
 
-namespace {
-// The reference point at barycentric coordinates l of an affine cell with vertices X.
-void point(const double *l, const double X[4][3], double x[3]) {
-  for (int d = 0; d < 3; ++d)
-    x[d] = l[0] * X[0][d] + l[1] * X[1][d] + l[2] * X[2][d] + l[3] * X[3][d];
-}
-void add_fibre_stress_at(const FibreFamily &f, const double F[3][3], const double x[3],
-                         double P[3][3]) {
-  double a[3];
-  f.direction(x, a);
-  f.add_stress(F, a, P);
-}
-} // namespace
-
 void SolidModule::stress(const double F[3][3], const double X[3], double P[3][3]) const {
   material_->stress(F, P);
-  if (p_.fibres.active()) add_fibre_stress_at(p_.fibres, F, X, P);
+  if (!p_.fibres.active()) return;
+  double a[3];
+  p_.fibres.direction(X, a);
+  p_.fibres.add_stress(F, a, P);
 }
 
-void SolidModule::add_fibre_stress(const double F[3][3], const double *l, const double X[4][3],
-                                   double P[3][3]) const {
-  double x[3];
-  point(l, X, x);
-  add_fibre_stress_at(p_.fibres, F, x, P);
+void SolidModule::fibre_direction(const double *l, const double X[4][3], double a[3]) const {
+  double x[3]; // the reference point at barycentric coordinates l of the affine cell
+  for (int d = 0; d < 3; ++d)
+    x[d] = l[0] * X[0][d] + l[1] * X[1][d] + l[2] * X[2][d] + l[3] * X[3][d];
+  p_.fibres.direction(x, a);
 }
 
 void SolidModule::reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const {
@@ -120,7 +109,11 @@ void SolidModule::add_residual(const StepContext &ctx, PetscScalar *R) {
             F[i][J] += u[b][i] * dN[b][J];
         }
       material_->stress(F, P);
-      if (p_.fibres.active()) add_fibre_stress(F, l, X, P);
+      if (p_.fibres.active()) {
+        double fa[3];
+        fibre_direction(l, X, fa);
+        p_.fibres.add_stress(F, fa, P);
+      }
       double f[3]; // inertia minus body force, per unit reference volume
       for (int i = 0; i < 3; ++i)
         f[i] = rho * (a[i] - g_scale * p_.gravity[i]);
@@ -191,9 +184,8 @@ void SolidModule::add_jacobian(const StepContext &ctx, Mat Jmat) {
               F[i][J] += u[b][i] * dN[b][J];
         material_->tangent(F, P, A);
         if (p_.fibres.active()) {
-          double Xq[3], a[3];
-          point(l, X, Xq);
-          p_.fibres.direction(Xq, a);
+          double a[3];
+          fibre_direction(l, X, a);
           p_.fibres.add_tangent(F, a, P, A);
         }
       }
@@ -258,9 +250,8 @@ SolidEnergy SolidModule::energy(const PetscScalar *V, const PetscScalar *D) cons
       e.kinetic += 0.5 * w * p_.rho * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
       e.strain += w * material_->energy(F);
       if (p_.fibres.active()) {
-        double Xq[3], a[3];
-        point(rule_.lambda[q].data(), X, Xq);
-        p_.fibres.direction(Xq, a);
+        double a[3];
+        fibre_direction(rule_.lambda[q].data(), X, a);
         e.strain += w * p_.fibres.energy(F, a);
       }
     }

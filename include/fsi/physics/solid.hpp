@@ -67,8 +67,8 @@ public:
 
 private:
   void reference_geometry(PetscInt k, TetGeometry &g, double X[4][3]) const;
-  void add_fibre_stress(const double F[3][3], const double *l, const double X[4][3],
-                        double P[3][3]) const;
+  // The fibre direction at barycentric coordinates l of a cell with reference vertices X.
+  void fibre_direction(const double *l, const double X[4][3], double a[3]) const;
   const Space &space_;
   const std::vector<double> &material_X_;
   SolidParams p_;
