@@ -8,31 +8,39 @@ starts, the earlier one's rows stop.  Prints (markdown)
     volume through the inlet, and their ratio;
   - with --hold MS (a closed valve under a held load, from MS to the end): the leak, i.e. the mean
     flow back through the valve over whole periods of the leaflets' ringing (from the first to the
-    last upward crossing of the mean), the net volume, and each period's flow swing;
+    last upward crossing of the mean), the same leak from a fit of a decaying oscillation about
+    a constant, the net volume, and each period's flow swing;
   - cost: steps, cut steps, s/step, Newton and Krylov per step, remeshes and their share of the
     wall time, peak memory per rank."""
 import json
 import os
 import sys
 
+import numpy as np
+
 from run_pieces import read_rows, stitch
 
 
 args = sys.argv[1:]
-every, period = 25.0, 1.1
-if "--every" in args:
-    i = args.index("--every")
-    every = float(args[i + 1])
+
+
+def take(flag, default):
+    """The number after FLAG in args (removed from them), else default; a bad value exits."""
+    if flag not in args:
+        return default
+    i = args.index(flag)
+    try:
+        value = float(args[i + 1])
+    except (IndexError, ValueError):
+        sys.exit(f"valve_report: {flag} needs a number, e.g. {flag} {default if default is not None else 40}")
     del args[i:i + 2]
-hold = None
-if "--hold" in args:
-    i = args.index("--hold")
-    hold = float(args[i + 1]) * 1e-3
-    del args[i:i + 2]
-if "--period" in args:
-    i = args.index("--period")
-    period = float(args[i + 1])
-    del args[i:i + 2]
+    return value
+
+
+every = take("--every", 25.0)
+period = take("--period", 1.1)
+hold = take("--hold", None)
+hold = hold * 1e-3 if hold is not None else None
 if not args:
     sys.exit(__doc__)
 mon = stitch([read_rows(d, "monitor.csv") for d in args], "step")
@@ -68,56 +76,49 @@ for c, (f, b, t0, t1) in sorted(cycles.items()):
     print(f"| {c + 1} | {t0*1e3:.1f} | {t1*1e3:.1f} | {f*1e6:.2f} | {b*1e6:.3f} | {b/f*100 if f else 0:.2f} % |")
 
 
+def leak_over_periods(t, q):
+    """Mean of a ringing flow q(t) over its whole periods: the integral between the first and last
+    upward crossings of that mean over their distance, by fixed-point iteration from the plain
+    mean.  Returns (mean, first, last crossing, each period's max - min), or None if the flow
+    crosses its mean upwards fewer than twice."""
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (q[1:] + q[:-1]) * np.diff(t))])  # trapezoid
 
-def leak_over_periods(rows):
-    """Mean backward flow [m^3/s] over whole periods of a ringing flow, the window's ends and each
-    period's (max - min): the mean is the flow's integral between its first and last upward
-    crossings of that mean, found by fixed-point iteration from the plain mean."""
-    t = [r["time"] for r in rows]
-    q = [r["inlet_flux"] for r in rows]  # > 0: out through the inlet, towards the ventricle
-
-    def integral(a, b):
-        v = 0.0
-        for i in range(1, len(t)):
-            lo, hi = max(t[i - 1], a), min(t[i], b)
-            if hi > lo:  # trapezoid of the piece of this interval inside [a, b]
-                qa = q[i - 1] + (q[i] - q[i - 1]) * (lo - t[i - 1]) / (t[i] - t[i - 1])
-                qb = q[i - 1] + (q[i] - q[i - 1]) * (hi - t[i - 1]) / (t[i] - t[i - 1])
-                v += 0.5 * (qa + qb) * (hi - lo)
-        return v
+    def integral(a, b):  # q linear between rows: its integral is quadratic; interp is exact at rows
+        def at(x):
+            i = min(max(np.searchsorted(t, x) - 1, 0), len(t) - 2)
+            s = x - t[i]
+            slope = (q[i + 1] - q[i]) / (t[i + 1] - t[i])
+            return cum[i] + q[i] * s + 0.5 * slope * s * s
+        return at(b) - at(a)
 
     def up_crossings(m):
-        return [t[i - 1] + (m - q[i - 1]) * (t[i] - t[i - 1]) / (q[i] - q[i - 1])
-                for i in range(1, len(t)) if q[i - 1] < m <= q[i]]
+        i = np.nonzero((q[:-1] < m) & (q[1:] >= m))[0]
+        return t[i] + (m - q[i]) * (t[i + 1] - t[i]) / (q[i + 1] - q[i])
 
-    mean, a, b = integral(t[0], t[-1]) / (t[-1] - t[0]), t[0], t[-1]
+    mean = cum[-1] / (t[-1] - t[0])
     for _ in range(20):
         ups = up_crossings(mean)
         if len(ups) < 2:
             return None
-        a, b = ups[0], ups[-1]
-        new = integral(a, b) / (b - a)
-        if abs(new - mean) < 1e-12:
-            break
+        new = integral(ups[0], ups[-1]) / (ups[-1] - ups[0])
+        done = abs(new - mean) < 1e-12
         mean = new
+        if done:
+            break
     ups = up_crossings(mean)
-    swings = [max(qq for tt, qq in zip(t, q) if lo <= tt <= hi) - min(qq for tt, qq in zip(t, q) if lo <= tt <= hi)
-              for lo, hi in zip(ups, ups[1:])]
-    return mean, a, b, swings
+    swings = [np.ptp(q[(t >= lo) & (t <= hi)]) for lo, hi in zip(ups, ups[1:])]
+    return mean, ups[0], ups[-1], swings
 
 
-def leak_fit(rows, period):
-    """Least-squares fit of q(t) = a + exp(-k s) (b cos w s + c sin w s), s = t - t0, over a grid of
+def leak_fit(t, q, period):
+    """Least-squares fit of q = a + exp(-k s) (b cos w s + c sin w s), s = t - t[0], over a grid of
     decay rates k and of angular frequencies w about 2 pi / period (a, b, c linear for each): the
     leak a without the bias a decaying ringing leaves in a mean over whole periods.  Returns
     (a, k, w, rms residual)."""
-    import numpy as np
-    t = np.array([r["time"] for r in rows])
-    q = np.array([r["inlet_flux"] for r in rows])
     s = t - t[0]
     best = None
     for w in 2 * np.pi / period * np.linspace(0.5, 2.0, 151):
-        for k in np.linspace(0, 5 / (s[-1] + 1e-12), 101):
+        for k in np.linspace(0, 5 / s[-1], 101):
             e = np.exp(-k * s)
             A = np.column_stack([np.ones_like(s), e * np.cos(w * s), e * np.sin(w * s)])
             coef, *_ = np.linalg.lstsq(A, q, rcond=None)
@@ -133,11 +134,12 @@ if hold is not None:
     if len(held) < 3:
         print("  too few rows")
     else:
-        net = sum(0.5 * (r["inlet_flux"] + s["inlet_flux"]) * (r["time"] - s["time"]) for s, r in zip(held, held[1:]))
-        span = held[-1]["time"] - held[0]["time"]
-        print(f"  to {held[-1]['time']*1e3:.1f} ms: net {net*1e6:.3f} mL back through the valve, "
-              f"{net/span*6e4:.3f} L/min on average (ringing included)")
-        res = leak_over_periods(held)
+        t = np.array([r["time"] for r in held])
+        q = np.array([r["inlet_flux"] for r in held])  # > 0: out through the inlet, to the ventricle
+        net = float(np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(t)))
+        print(f"  to {t[-1]*1e3:.1f} ms: net {net*1e6:.3f} mL back through the valve, "
+              f"{net/(t[-1] - t[0])*6e4:.3f} L/min on average (ringing included)")
+        res = leak_over_periods(t, q)
         if res is None:
             print("  less than one whole period of the ringing: no leak figure")
         else:
@@ -146,10 +148,10 @@ if hold is not None:
                   f"(period {(b - a)/len(swings)*1e3:.1f} ms): leak {mean*6e4:.3f} L/min = "
                   f"{mean*1e6:.2f} mL/s; flow swing per period " +
                   ", ".join(f"{w*6e4:.2f}" for w in swings) + " L/min")
-            a_fit, k, w, rms = leak_fit(held, (b - a) / len(swings))
+            a_fit, k, w, rms = leak_fit(t, q, (b - a) / len(swings))
             print(f"  fit a + exp(-k t)(b cos wt + c sin wt) over the hold: leak a = {a_fit*6e4:.3f} L/min = "
                   f"{a_fit*1e6:.2f} mL/s, decay time 1/k = {1/k*1e3 if k > 0 else float('inf'):.1f} ms, "
-                  f"period {2*3.141592653589793/w*1e3:.1f} ms, rms misfit {rms*6e4:.3f} L/min")
+                  f"period {2*np.pi/w*1e3:.1f} ms, rms misfit {rms*6e4:.3f} L/min")
 
 steps = len(mon)
 wall = sum(r["step_seconds"] for r in mon)
