@@ -4,7 +4,8 @@ or only the Jacobian's nonzero pattern and its solver are rebuilt (-sim_pattern_
 the path contact takes when its pairs change).  Either must give the uninterrupted answer:
 1. tube (FSI, mesh motion, geometry iterated, wall shear accumulated on the interface), 1 rank,
    MUMPS: every monitor column equal to 1e-12 of its largest value, same TAWSS/OSI;
-2. the same on 2 ranks: equal within the run-to-run spread of 2-rank MUMPS (measured 4e-8);
+2. the same on 2 ranks: equal within the run-to-run spread of 2-rank MUMPS (up to 1.7e-10 in
+   three runs, each column against its quantity's size; two uninterrupted runs differ as much);
 3. pattern rebuilt before every solve: 1e-12 with MUMPS; with the fluid/solid split preconditioner
    (set up anew for each matrix) within its Krylov tolerance and with the same Krylov counts;
 4. a node on two Dirichlet boundaries follows the documented precedence, not the listing order:
@@ -12,6 +13,7 @@ the path contact takes when its pairs change).  Either must give the uninterrupt
    the inlet rim, where the parabolic profile is not zero at edge midpoints).
 Argument: 1 runs items 1, 3, 4 (one rank each), 2 runs item 2 (two ranks)."""
 import os
+import re
 import sys
 from fsitest import SRC, check, finish, run
 
@@ -21,17 +23,28 @@ STEPS = ["-ts_max_steps", "6", "-ale_geometry_iterations", "2", "-hemo_surfaces"
          "-mesh_h", "0.003"]  # coarser than the scene's CI level: the runs are compared, not judged
 
 
+def family(col):
+    """Columns of one quantity share a scale: the x, y, z parts of a force, velocity or
+    displacement anywhere, every pressure, every flux.  A column that is zero by symmetry or not yet
+    reached by the wave (the outlet's lateral force, 1e-14 N at step 6) is judged against the
+    quantity's size in the run, not against its own round-off."""
+    last = col.rsplit("_", 1)[-1]
+    return last[0] if re.fullmatch(r"[fvu][xyz]", last) else last
+
+
 def worst(a, b):
-    """Largest difference of any monitor column, relative to that column's largest value."""
+    """Largest difference of any monitor column, relative to its quantity's largest value."""
     ma, mb = a.monitor, b.monitor
     if len(ma) != len(mb):
         return float("inf"), "row count"
+    scale = {}
+    for k in ma[0]:
+        scale[family(k)] = max(scale.get(family(k), 0.0), max(abs(r[k]) for r in ma))
     out = (0.0, "")
     for k in ma[0]:
         if k == "step_seconds":
             continue
-        scale = max(abs(r[k]) for r in ma) or 1.0
-        d = max(abs(x[k] - y[k]) for x, y in zip(ma, mb)) / scale
+        d = max(abs(x[k] - y[k]) for x, y in zip(ma, mb)) / (scale[family(k)] or 1.0)
         out = max(out, (d, k))
     return out
 
@@ -48,7 +61,7 @@ def same_hemo(a, b, tol):
 RANKS = int(sys.argv[1]) if len(sys.argv) > 1 else 1
 
 # 1. and 2.: whole rebuilds
-for np_, tol in ((1, 1e-12), (2, 1e-5)):
+for np_, tol in ((1, 1e-12), (2, 1e-7)):
     if np_ != RANKS:
         continue
     base = run(TUBE, np=np_, extra=STEPS)
