@@ -55,7 +55,9 @@ rq = run(TUBE, np=2, extra=COARSE + ["-ale_max_skewness", "0.5", "-ale_remesh_sk
 check(rq.code == 3 and "too distorted" in rq.out and rq.summary["converged"] is False,
       "a mesh past -ale_max_skewness stops the run before the step: exit 3, clear message, converged false")
 for rho in ("100", "10"):
-    r = run(TUBE, np=2, extra=["-mesh_h", "0.002", "-ts_max_steps", "25", "-solid_rho", rho])
+    # h 3 mm as above: the same Newton counts (2 per step) and peak pressure (566/574 Pa against
+    # 568/574 Pa at h 2 mm) at a third of the cost; the added-mass ratio is the test, not the mesh
+    r = run(TUBE, np=2, extra=["-mesh_h", "0.003", "-ts_max_steps", "25", "-solid_rho", rho])
     check(r.code == 0, f"rho_s = {rho}: 25 steps converge")
     if r.code == 0:
         m = r.monitor
