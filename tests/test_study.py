@@ -3,7 +3,8 @@
 dt, reports the observed order of the centre-line velocity curve (~2: generalized-alpha is second
 order; the peak of a sampled curve is not a clean order measure, so the curve's is checked),
 writes study.csv, study.md and accuracy_cost.png, and --target-error picks the cheapest case
-that meets it."""
+that meets it.  The mesh is coarser than the scene's (9 855 dofs against 28 369: the order along dt
+does not need the fine mesh; measured curve orders 1.97, 1.91, against 1.72 at 5 231 dofs)."""
 import csv
 import os
 import subprocess
@@ -13,7 +14,8 @@ from fsitest import ENV, SRC, APP, check, finish
 out = tempfile.mkdtemp(prefix="fsi_study_")
 cmd = ["/usr/bin/python3", os.path.join(SRC, "scripts", "study.py"), "womersley", "--vary",
        "dt=0.05,0.025,0.0125,0.00625", "--qoi", "probe0_vz:max", "--np", "1", "--out", out,
-       "--target-error", "1e-3", "--", "-mesh_cache_dir", os.path.join(SRC, "build", "mesh_cache")]
+       "--target-error", "1e-3", "--", "-mesh_cache_dir", os.path.join(SRC, "build", "mesh_cache"),
+       "-mesh_params", "R=0.005,L=0.01,ncirc=24", "-mesh_h", "0.0025"]
 p = subprocess.run(cmd, cwd=SRC, env=dict(ENV, FSI_APP=APP), stdout=subprocess.PIPE,
                    stderr=subprocess.STDOUT, text=True, timeout=900)
 print(p.stdout)
