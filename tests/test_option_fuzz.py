@@ -41,7 +41,8 @@ KEYWORDS = {"ic", "ts_type", "ts_adapt_type", "fluid_model", "solid_material", "
             "bc_<b>_jacobian", "bc_<b>_components", "solid_gravity_waveform"}
 VECTORS = {"ic_velocity", "solid_gravity", "probe_points", "solid_probe_points", "valve_center",
            "valve_axis", "valve_dp_planes", "bc_<b>_direction", "bc_<b>_center"}
-FLAGS = {"allow_unused_options", "restart_reset_dt", "monitor_fluid_volume", "monitor_solid_energy",
+FLAGS = {"allow_unused_options", "restart_reset_dt", "ale_remesh_ignore_sealed",
+         "monitor_fluid_volume", "monitor_solid_energy",
          "fluid_direct_insertion", "solid_direct_insertion", "bc_<b>_periodic"}
 FILES = {"mesh_file", "mesh_geo", "restart", "bc_<b>_table"}
 INTEGERS = {"out_fields_every", "checkpoint_every", "checkpoint_crash_test", "sim_rebuild_every",

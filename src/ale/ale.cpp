@@ -16,6 +16,7 @@ Ale::Ale(const Space &space, std::unique_ptr<MeshMotion> motion,
   max_skewness_ = opt::positive("ale_max_skewness", 0.99);
   remesh_skewness_ = opt::nonnegative("ale_remesh_skewness", 0.9);
   remesh_min_ratio_ = opt::nonnegative("ale_remesh_min_volume_ratio", 0.1);
+  ignore_sealed_ = opt::flag("ale_remesh_ignore_sealed", false);
   if (remesh_skewness_ >= 1)
     throw InputError("-ale_remesh_skewness must be below 1 (0 turns remeshing off)");
   Xn_ = space.X;
@@ -103,7 +104,10 @@ void Ale::check(const char *when, long step) {
       skewness0_.push_back(tet_skewness(P));
     }
   }
-  quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_, remeshing() ? &skewness0_ : nullptr);
+  std::vector<char> sealed;
+  if (remeshing() && ignore_sealed_ && sealed_) sealed_(sealed);
+  quality_ = mesh_quality(space_, *fluid_cells_, Xnp1_, remeshing() ? &skewness0_ : nullptr,
+                          sealed.empty() ? nullptr : &sealed);
   // With remeshing the skewness limit applies to what the motion did to a cell: a sliver the
   // mesher had to make between boundary triangles that nearly face each other (four boundary
   // vertices across a thin gap) is as good as any mesh of that boundary gets, and a new mesh
@@ -111,18 +115,19 @@ void Ale::check(const char *when, long step) {
   const double skew = remeshing() ? quality_.max_degraded_skewness : quality_.max_skewness;
   const bool hard = quality_.min_jacobian <= min_jacobian_ || skew >= max_skewness_;
   const bool before = std::string(when) == "before";
-  const bool soft = before && (quality_.max_degraded_skewness > remesh_skewness_ ||
+  const bool soft = before && (quality_.max_degraded_open > remesh_skewness_ ||
                                quality_.min_jacobian < remesh_min_ratio_);
   char msg[500];
   if (remesh && (hard || soft)) {
     std::snprintf(msg, sizeof msg,
-                  "mesh %s step %ld: worst skewness %.3f (degraded %.3f at %.4g,%.4g,%.4g m, "
+                  "mesh %s step %ld: worst skewness %.3f (degraded %.3f%s at %.4g,%.4g,%.4g m, "
                   "-ale_remesh_skewness %.3g), smallest volume ratio %.3g at %.4g,%.4g,%.4g m "
                   "(-ale_remesh_min_volume_ratio %.3g)",
-                  when, step, quality_.max_skewness, quality_.max_degraded_skewness,
-                  quality_.where_degraded[0], quality_.where_degraded[1],
-                  quality_.where_degraded[2], remesh_skewness_, quality_.min_jacobian,
-                  quality_.where[0], quality_.where[1], quality_.where[2], remesh_min_ratio_);
+                  when, step, quality_.max_skewness, quality_.max_degraded_open,
+                  sealed.empty() ? "" : " outside sealed gaps", quality_.where_degraded_open[0],
+                  quality_.where_degraded_open[1], quality_.where_degraded_open[2],
+                  remesh_skewness_, quality_.min_jacobian, quality_.where[0], quality_.where[1],
+                  quality_.where[2], remesh_min_ratio_);
     throw RemeshNeeded(msg);
   }
   if (hard) {

@@ -88,49 +88,61 @@ static double signed_volume(const double Q[4][3]) {
          6.0;
 }
 
+namespace {
+struct ValueRank {
+  double value;
+  int rank;
+};
+// The largest v over all ranks and the point x (3) of the rank that has it.
+double max_with_point(double v, double x[3], MPI_Comm comm) {
+  ValueRank mine = {v, 0}, worst;
+  MPI_Comm_rank(comm, &mine.rank);
+  MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
+  MPI_Bcast(x, 3, MPI_DOUBLE, worst.rank, comm);
+  return worst.value;
+}
+} // namespace
+
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
-                         const std::vector<double> &X, const std::vector<double> *skewness0) {
-  double jmin = 1e300, smax = 0, sdeg = 0, at[3] = {0, 0, 0}, atdeg[3] = {0, 0, 0};
+                         const std::vector<double> &X, const std::vector<double> *skewness0,
+                         const std::vector<char> *exempt) {
+  double jmin = 1e300, smax = 0, sdeg = 0, sopen = 0, at[3] = {0, 0, 0}, atdeg[3] = {0, 0, 0},
+         atopen[3] = {0, 0, 0};
   for (size_t i = 0; i < cells.size(); ++i) {
     const PetscInt k = cells[i];
     double P[4][3], P0[4][3];
     space.cell_points(k, X.data(), P);
     space.cell_points(k, space.X.data(), P0);
     const double Vs = signed_volume(P), V0 = signed_volume(P0);
+    double c[3];
+    for (int d = 0; d < 3; ++d)
+      c[d] = 0.25 * (P[0][d] + P[1][d] + P[2][d] + P[3][d]);
     if (Vs / V0 < jmin) { // the vertex order may be negatively oriented: compare signs
       jmin = Vs / V0;
-      for (int d = 0; d < 3; ++d)
-        at[d] = 0.25 * (P[0][d] + P[1][d] + P[2][d] + P[3][d]);
+      std::copy(c, c + 3, at);
     }
     const double s = Vs / V0 <= 0 ? 1.0 : tet_skewness(P);
     smax = std::max(smax, s);
     // Degraded: its quality 1 - s at most half of what it was in the reference mesh.
-    if (skewness0 && 1 - s <= 0.5 * (1 - (*skewness0)[i]) && s > sdeg) {
+    if (!skewness0 || 1 - s > 0.5 * (1 - (*skewness0)[i])) continue;
+    if (s > sdeg) {
       sdeg = s;
-      for (int d = 0; d < 3; ++d)
-        atdeg[d] = 0.25 * (P[0][d] + P[1][d] + P[2][d] + P[3][d]);
+      std::copy(c, c + 3, atdeg);
+    }
+    if (s > sopen && !(exempt && (*exempt)[i])) {
+      sopen = s;
+      std::copy(c, c + 3, atopen);
     }
   }
   MeshQuality q;
   MPI_Comm comm = PetscObjectComm((PetscObject)space.dm);
-  struct {
-    double value;
-    int rank;
-  } mine = {jmin, 0}, least;
-  MPI_Comm_rank(comm, &mine.rank);
-  MPI_Allreduce(&mine, &least, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm);
-  q.min_jacobian = least.value;
+  q.min_jacobian = -max_with_point(-jmin, at, comm);
   std::copy(at, at + 3, q.where);
-  MPI_Bcast(q.where, 3, MPI_DOUBLE, least.rank, comm);
   MPI_Allreduce(&smax, &q.max_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
-  struct {
-    double value;
-    int rank;
-  } mydeg = {sdeg, mine.rank}, worst;
-  MPI_Allreduce(&mydeg, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
-  q.max_degraded_skewness = worst.value;
+  q.max_degraded_skewness = max_with_point(sdeg, atdeg, comm);
   std::copy(atdeg, atdeg + 3, q.where_degraded);
-  MPI_Bcast(q.where_degraded, 3, MPI_DOUBLE, worst.rank, comm);
+  q.max_degraded_open = max_with_point(sopen, atopen, comm);
+  std::copy(atopen, atopen + 3, q.where_degraded_open);
   return q;
 }
 

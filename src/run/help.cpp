@@ -171,6 +171,8 @@ const std::vector<Section> &sections() {
          "remesh the fluid when a degraded cell's skewness passes this (0: off)"},
         {"ale_remesh_min_volume_ratio", "0.1", "-",
          "remesh when a fluid cell is squeezed below this fraction of its volume"},
+        {"ale_remesh_ignore_sealed", "false", "-",
+         "the skewness trigger leaves out cells a gap seal holds shut (a closed valve's hold)"},
         {"ale_remesh_hmax", "0 (from the boundary)", "m", "largest cell of a new fluid mesh"},
         {"ale_remesh_every", "0", "steps", "also remesh after every N steps (tests, studies)"},
         {"ale_remesh_gap_cells", "2", "-",

@@ -141,6 +141,13 @@ void Simulation::build_physics(const Mesh &mesh) {
   const std::vector<PetscInt> *fluid_cells = fluid_ ? &fluid_->cells() : nullptr;
   ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells, material_X_),
                                fluid_cells);
+  if (seal_)
+    ale_->set_sealed([seal = seal_](std::vector<char> &sealed) {
+      const std::vector<double> &a = seal->alpha(); // per fluid cell, in the fluid's order
+      sealed.resize(a.size());
+      for (size_t i = 0; i < a.size(); ++i)
+        sealed[i] = a[i] > 0.5 * seal->resistance();
+    });
   const std::string iface = opt::string("ale_interface", "");
   if (!iface.empty()) {
     if (!fluid_ || !ale_->moving())

@@ -12,6 +12,10 @@
 //     squeezed below R of its reference volume, or any cell past the hard limits above, throws
 //     RemeshNeeded before its solve; the run remeshes (remesh.hpp) and retries the step.  The
 //     first step on a new mesh only stops at the hard limits (no remesh loop).
+//   -ale_remesh_ignore_sealed (default false): the skewness trigger leaves out the cells a gap
+//     seal holds shut (set_sealed): a closed valve's coaptation gap, whose thin cells the
+//     leaflets keep squeezing, then asks for a remesh only at the hard limits or the volume
+//     ratio, not at every step of a hold.
 // Coordinates are 3 per local vertex; the fluid mesh's reference is Space::X (the ALE
 // reference, where the mesh displacement is zero), not the solid's material reference.
 #pragma once
@@ -58,6 +62,8 @@ public:
   double relative_change(const std::vector<double> &d) const;
   // Quality of the fluid cells at t_{n+1}; throws DistortionError past the limits.
   void check(const char *when, long step);
+  // Cells held shut (per fluid cell, filled by the callback) for -ale_remesh_ignore_sealed.
+  void set_sealed(std::function<void(std::vector<char> &)> sealed) { sealed_ = std::move(sealed); }
   const MeshQuality &quality() const { return quality_; }
   // Remeshing: on for this run; fresh = the mesh was just built, its first step does not ask.
   bool remeshing() const { return remesh_skewness_ > 0 && follows_solid(); }
@@ -73,7 +79,8 @@ private:
   int geometry_iterations_ = 0;
   double geometry_rtol_ = 1e-6, min_jacobian_ = 0, max_skewness_ = 0.99;
   double remesh_skewness_ = 0.9, remesh_min_ratio_ = 0.1;
-  bool fresh_ = false;
+  bool fresh_ = false, ignore_sealed_ = false;
+  std::function<void(std::vector<char> &)> sealed_;
   std::vector<double> skewness0_; // per fluid cell, in the reference mesh
   std::vector<double> dn_, dnp1_, Xn_, Xaf_, Xnp1_, W_;
   bool has_velocity_ = false;

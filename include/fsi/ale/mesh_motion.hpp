@@ -49,12 +49,17 @@ struct MeshQuality {
   // slivers that stay as bad as they were do not count.
   double max_degraded_skewness = 0;
   double where_degraded[3] = {0, 0, 0}; // centre of the cell of max_degraded_skewness
+  // The same without the exempt cells (all cells when none are): what asks for a remesh.
+  double max_degraded_open = 0;
+  double where_degraded_open[3] = {0, 0, 0};
   double where[3] = {0, 0, 0}; // centre of the cell with the smallest volume ratio (the one the
                                // motion crushes most)
 };
+// exempt (per cell, optional): cells left out of max_degraded_open.
 MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
                          const std::vector<double> &X,
-                         const std::vector<double> *skewness0 = nullptr);
+                         const std::vector<double> *skewness0 = nullptr,
+                         const std::vector<char> *exempt = nullptr);
 // Volume skewness of one tetrahedron (0 regular, 1 degenerate).
 double tet_skewness(const double P[4][3]);
 

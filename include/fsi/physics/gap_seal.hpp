@@ -52,6 +52,7 @@ public:
   // Resistance [Pa s/m^2] of every local fluid cell (0 where open), for output.
   const std::vector<double> &alpha() const { return alpha_; }
   const std::vector<PetscInt> &cells() const { return cells_; }
+  double resistance() const { return p_.resistance; } // alpha_max [Pa s/m^2]
 
 private:
   // Target resistance at point c from its distances to the two nearest pieces (best: scratch).
