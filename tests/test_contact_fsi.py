@@ -1,7 +1,7 @@
 """Closure in a flow (issue 16): two plates in a fluid box, fluid entering at the top (200 Pa)
 and leaving through a drain between them (tests/scenes/plates_closing.opts), 2 ranks, 35 steps.
 The pressure outside the plates exceeds that in the gap and bends them shut, like a valve
-closing.  With contact and the gap seal the run completes (remeshing the fluid twice); the tips
+closing.  With contact and the gap seal the run completes (remeshing the fluid once); the tips
 stop at the offset (gap >= offset - penetration, penetration < 10 % of it), no element
 inverts, and the downward velocity in the gap falls by > 90 % from its peak (measured 96 %:
 -0.047 -> -0.002 m/s).  With --long (not in CI): without the closure model the same run stops (exit 3, checkpoint kept)
