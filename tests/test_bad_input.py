@@ -22,6 +22,7 @@ cases = [
     ("output directory not writable", ["-out_dir", "/proc/fsi_results"], "output directory"),
     ("mesh slip on a curved wall", ["-ale_motion", "laplace", "-ale_slip_boundaries", "wall"], "axis-aligned plane"),
     ("unknown mesh motion", ["-ale_motion", "elastic"], "elastic"),
+    ("sealed cells ignored without a gap seal", ["-ale_remesh_ignore_sealed"], "gap_seal"),
     ("mesh without the fluid region", ["-fluid_region", "blood"], "blood"),
     ("zero time step", ["-ts_type", "alpha", "-ts_dt", "0"], "ts_dt"),
     ("negative time step", ["-ts_type", "alpha", "-ts_dt", "-1e-3"], "ts_dt"),

@@ -141,8 +141,13 @@ MeshQuality mesh_quality(const Space &space, const std::vector<PetscInt> &cells,
   MPI_Allreduce(&smax, &q.max_skewness, 1, MPI_DOUBLE, MPI_MAX, comm);
   q.max_degraded_skewness = max_with_point(sdeg, atdeg, comm);
   std::copy(atdeg, atdeg + 3, q.where_degraded);
-  q.max_degraded_open = max_with_point(sopen, atopen, comm);
-  std::copy(atopen, atopen + 3, q.where_degraded_open);
+  if (exempt) { // else the same cell as above: no second reduction on this per-step path
+    q.max_degraded_open = max_with_point(sopen, atopen, comm);
+    std::copy(atopen, atopen + 3, q.where_degraded_open);
+  } else {
+    q.max_degraded_open = q.max_degraded_skewness;
+    std::copy(q.where_degraded, q.where_degraded + 3, q.where_degraded_open);
+  }
   return q;
 }
 

@@ -97,7 +97,7 @@ void GapSeal::begin_solve(const StepContext &ctx) {
         x[d] += 0.25 * ctx.X_af[3 * space_.cell_vertex[4 * cells_[c] + i] + d];
     const double a = target(x, best), prev = alpha_prev_[c];
     alpha_[c] = prev < 0 ? a : prev + (a - prev) * relax;
-    sealing += alpha_[c] > 0.5 * p_.resistance;
+    sealing += sealed(c);
     amax = std::max(amax, alpha_[c]);
   }
   MPI_Comm comm = PetscObjectComm((PetscObject)space_.dm);

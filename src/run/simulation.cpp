@@ -141,12 +141,14 @@ void Simulation::build_physics(const Mesh &mesh) {
   const std::vector<PetscInt> *fluid_cells = fluid_ ? &fluid_->cells() : nullptr;
   ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells, material_X_),
                                fluid_cells);
+  if (ale_->ignores_sealed() && !seal_)
+    throw InputError("-ale_remesh_ignore_sealed needs the gap seal: -physics "
+                     "fluid,solid,contact,gap_seal (or drop the option)");
   if (seal_)
     ale_->set_sealed([seal = seal_](std::vector<char> &sealed) {
-      const std::vector<double> &a = seal->alpha(); // per fluid cell, in the fluid's order
-      sealed.resize(a.size());
-      for (size_t i = 0; i < a.size(); ++i)
-        sealed[i] = a[i] > 0.5 * seal->resistance();
+      sealed.resize(seal->cells().size()); // the fluid's cells, in their order
+      for (size_t c = 0; c < sealed.size(); ++c)
+        sealed[c] = seal->sealed(c);
     });
   const std::string iface = opt::string("ale_interface", "");
   if (!iface.empty()) {

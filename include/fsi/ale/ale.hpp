@@ -64,6 +64,7 @@ public:
   void check(const char *when, long step);
   // Cells held shut (per fluid cell, filled by the callback) for -ale_remesh_ignore_sealed.
   void set_sealed(std::function<void(std::vector<char> &)> sealed) { sealed_ = std::move(sealed); }
+  bool ignores_sealed() const { return ignore_sealed_; }
   const MeshQuality &quality() const { return quality_; }
   // Remeshing: on for this run; fresh = the mesh was just built, its first step does not ask.
   bool remeshing() const { return remesh_skewness_ > 0 && follows_solid(); }

@@ -52,7 +52,8 @@ public:
   // Resistance [Pa s/m^2] of every local fluid cell (0 where open), for output.
   const std::vector<double> &alpha() const { return alpha_; }
   const std::vector<PetscInt> &cells() const { return cells_; }
-  double resistance() const { return p_.resistance; } // alpha_max [Pa s/m^2]
+  // Cell c of cells() held shut: alpha > alpha_max / 2 (what GapSealStats counts).
+  bool sealed(size_t c) const { return alpha_[c] > 0.5 * p_.resistance; }
 
 private:
   // Target resistance at point c from its distances to the two nearest pieces (best: scratch).
