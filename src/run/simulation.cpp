@@ -436,6 +436,11 @@ std::vector<std::string> Simulation::monitor_columns() const {
          {"mesh_min_jacobian", "mesh_max_skewness", "mesh_min_jacobian_x", "mesh_min_jacobian_y",
           "mesh_min_jacobian_z", "geometry_iterations", "geometry_change"})
       columns.push_back(c);
+  // What the remesh trigger judges: the worst skewness among cells the motion degraded, and with
+  // -ale_remesh_ignore_sealed the same outside the sealed gaps (the one it acts on).
+  if (ale_->remeshing()) columns.push_back("mesh_max_degraded_skewness");
+  if (ale_->remeshing() && ale_->ignores_sealed())
+    columns.push_back("mesh_max_degraded_skewness_unsealed");
   return columns;
 }
 
@@ -463,6 +468,8 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
                {ale_->quality().min_jacobian, ale_->quality().max_skewness,
                 ale_->quality().where[0], ale_->quality().where[1], ale_->quality().where[2],
                 (double)s.geometry_iterations, s.geometry_change});
+  if (ale_->remeshing()) row.push_back(ale_->quality().max_degraded_skewness);
+  if (ale_->remeshing() && ale_->ignores_sealed()) row.push_back(ale_->quality().max_degraded_open);
   if (fields_ && step_index() % out_.fields_every == 0) {
     Vec loc = space_.create_local(), dloc = space_.create_local();
     solution_local(loc);
