@@ -47,6 +47,8 @@ hold = take("--hold", None)
 hold = hold * 1e-3 if hold is not None else None
 diastole = take("--diastole", 0.79)
 stroke = take("--stroke", 102.1)
+if diastole <= 0 or stroke <= 0:
+    sys.exit("valve_report: --diastole and --stroke must be positive (seconds, millilitres), e.g. --diastole 0.79 --stroke 102.1")
 if not args:
     sys.exit(__doc__)
 mon = stitch([read_rows(d, "monitor.csv") for d in args], "step")
