@@ -15,6 +15,7 @@ FluidParams FluidParams::from_options() {
   p.stokes = opt::choice("fluid_model", "navier_stokes", {"navier_stokes", "stokes"}) == "stokes";
   p.skew = opt::choice("fluid_convection", "convective", {"convective", "skew_symmetric"}) ==
            "skew_symmetric";
+  p.grad_div = opt::nonnegative("fluid_grad_div", p.grad_div);
   p.quad_degree = (int)opt::integer("fluid_quad_degree", 4);
   p.direct_insertion = opt::flag("fluid_direct_insertion", true);
   if (p.quad_degree < 2 || p.quad_degree > 10)
@@ -92,7 +93,7 @@ void FluidModule::gather(const StepContext &ctx, PetscInt k, Element &e) const {
 }
 
 void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
-  const double rho = p_.rho, mu = p_.mu;
+  const double rho = p_.rho, mu = p_.mu, gd = p_.grad_div;
   const bool conv = !p_.stokes, skew = conv && p_.skew;
   Element e;
   for (PetscInt k : cells_) {
@@ -121,7 +122,8 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
           w[i] += l[b] * e.w[b][i];
       }
       double f[3], tau[3][3];
-      const double half_div = skew ? 0.5 * (G[0][0] + G[1][1] + G[2][2]) : 0.0;
+      const double divv = G[0][0] + G[1][1] + G[2][2];
+      const double half_div = skew ? 0.5 * divv : 0.0;
       for (int i = 0; i < 3; ++i) {
         f[i] = rho * a[i];
         if (conv) {
@@ -131,7 +133,7 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
         }
         for (int j = 0; j < 3; ++j)
           tau[i][j] = mu * (G[i][j] + G[j][i]);
-        tau[i][i] -= p;
+        tau[i][i] += gd * divv - p; // grad-div: zero on the exact (divergence-free) solution
       }
       for (int b = 0; b < 10; ++b)
         for (int i = 0; i < 3; ++i)
@@ -156,7 +158,7 @@ void FluidModule::add_residual(const StepContext &ctx, PetscScalar *F) {
 //   Tref[k], the residual's rule) needs no quadrature loop, and only the scalar convection
 //   N_a (c . grad N_b) is summed over the residual's rule.
 void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
-  const double rho = p_.rho, mu = p_.mu;
+  const double rho = p_.rho, mu = p_.mu, gd = p_.grad_div;
   const bool conv = !p_.stokes, skew = conv && p_.skew;
   const double cm = ctx.mass_shift(), cf = ctx.stiff_shift();
   const std::vector<char> &bc = *ctx.is_dirichlet;
@@ -194,6 +196,20 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
     for (int a = 0; a < 10; ++a)
       for (int b = 0; b < 10; ++b)
         S[a][b] = sm * ref_.M[a][b] + E[0][0][a][b] + E[1][1][a][b] + E[2][2][a][b];
+    // Grad-div (after the trace above, which it must not enter): gamma cf |det| int dN_a,i dN_b,j.
+    if (gd > 0)
+      for (size_t q = 0; q < rule2_.weight.size(); ++q) {
+        double dN[10][3], Nd[10];
+        p2_tet(rule2_.lambda[q].data(), g, Nd, dN);
+        const double s = rule2_.weight[q] * det * gd * cf;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            for (int a = 0; a < 10; ++a) {
+              const double t = s * dN[a][i];
+              for (int b = 0; b < 10; ++b)
+                E[i][j][a][b] += t * dN[b][j];
+            }
+      }
     if (conv) {
       // rho N_a N_b G_ij with G = grad v, linear: G(q) = sum_k lambda_k(q) G_k.
       for (int kv = 0; kv < 4; ++kv) {

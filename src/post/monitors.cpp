@@ -71,8 +71,8 @@ std::vector<std::string> Monitors::columns() const {
 ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
                             const std::vector<double> &Xp, double tp) const {
   static const QuadRule rule = tet_rule(6);
-  // sums: |ev|^2, |v|^2, ep^2, p^2, int ep, int p, volume
-  double acc[7] = {};
+  // sums: |ev|^2, |v|^2, ep^2, p^2, int ep, int p, volume, (div vh)^2
+  double acc[8] = {};
   for (PetscInt k : fluid_->cells()) {
     double X[4][3], XP[4][3];
     for (int i = 0; i < 4; ++i)
@@ -86,7 +86,7 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
     for (size_t q = 0; q < rule.weight.size(); ++q) {
       const double *l = rule.lambda[q].data();
       double N[10], dN[10][3], x[3] = {0, 0, 0}, xp[3] = {0, 0, 0}, vh[3] = {0, 0, 0}, ph = 0,
-                               ve[3];
+                               ve[3], div = 0;
       p2_tet(l, g.grad_lambda, N, dN);
       for (int i = 0; i < 4; ++i)
         for (int d = 0; d < 3; ++d) {
@@ -94,8 +94,11 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
           xp[d] += l[i] * XP[i][d];
         }
       for (int a = 0; a < 10; ++a)
-        for (int d = 0; d < 3; ++d)
-          vh[d] += N[a] * PetscRealPart(u[space_->cell_vdof[10 * k + a] + d]);
+        for (int d = 0; d < 3; ++d) {
+          const double ua = PetscRealPart(u[space_->cell_vdof[10 * k + a] + d]);
+          vh[d] += N[a] * ua;
+          div += dN[a][d] * ua;
+        }
       for (int i = 0; i < 4; ++i)
         ph += l[i] * PetscRealPart(u[space_->cell_pdof[4 * k + i]]);
       exact_->velocity(x, tv, ve);
@@ -110,12 +113,14 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
       acc[4] += wp * (ph - pe);
       acc[5] += wp * pe;
       acc[6] += wp;
+      acc[7] += w * div * div;
     }
   }
-  double glob[7];
-  MPI_Allreduce(acc, glob, 7, MPI_DOUBLE, MPI_SUM, comm_);
+  double glob[8];
+  MPI_Allreduce(acc, glob, 8, MPI_DOUBLE, MPI_SUM, comm_);
   ErrorNorms e;
   e.v_l2 = std::sqrt(glob[0]);
+  e.div_l2 = std::sqrt(glob[7]);
   e.v_norm = std::sqrt(glob[1]);
   double ep2 = glob[2], p2 = glob[3];
   if (!exact_->pressure_level_defined()) { // compare up to a constant
@@ -127,11 +132,12 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
   return e;
 }
 
-// Kinetic energy, viscous dissipation and convective power of this rank's cells (sums in e[3]);
-// degree 6: |v|^2 (div v) is degree 5 on straight-sided P2 cells.
+// Kinetic energy, dissipation (viscous, and grad-div's gamma (div v)^2 when on) and convective
+// power of this rank's cells (sums in e[3]); degree 6: |v|^2 (div v) is degree 5 on straight-sided
+// P2 cells.
 void Monitors::energy(const PetscScalar *u, const std::vector<double> &Xc, double e[3]) const {
   static const QuadRule rule = tet_rule(6);
-  const double rho = fluid_->params().rho, mu = fluid_->params().mu;
+  const double rho = fluid_->params().rho, mu = fluid_->params().mu, gd = fluid_->params().grad_div;
   for (PetscInt k : fluid_->cells()) {
     double X[4][3], ve[10][3];
     for (int i = 0; i < 4; ++i)
@@ -159,8 +165,9 @@ void Monitors::energy(const PetscScalar *u, const std::vector<double> &Xc, doubl
           dd += s * s;
         }
       e[0] += w * 0.5 * rho * v2;
-      e[1] += w * 2 * mu * dd;
-      e[2] += w * 0.5 * rho * (G[0][0] + G[1][1] + G[2][2]) * v2;
+      const double div = G[0][0] + G[1][1] + G[2][2];
+      e[1] += w * (2 * mu * dd + gd * div * div);
+      e[2] += w * 0.5 * rho * div * v2;
     }
   }
 }

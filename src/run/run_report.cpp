@@ -220,6 +220,7 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
     Json err;
     err.set("velocity_l2", e.v_l2)
         .set("pressure_l2", e.p_l2)
+        .set("divergence_l2", e.div_l2)
         .set("velocity_l2_relative", e.v_l2 / e.v_norm)
         .set("pressure_l2_relative", e.p_l2 / e.p_norm);
     j.set("error_final", err);

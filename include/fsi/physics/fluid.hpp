@@ -24,7 +24,8 @@ struct FluidParams {
   std::string region = "fluid";
   double rho = 1000, mu = 0.003;
   bool stokes = false;
-  bool skew = false; // Temam's skew-symmetric convection
+  bool skew = false;   // Temam's skew-symmetric convection
+  double grad_div = 0; // gamma of gamma (div v, div w): penalises the weak divergence [Pa s]
   int quad_degree = 4;
   bool direct_insertion = true; // element matrices straight into the AIJ arrays
   static FluidParams from_options();

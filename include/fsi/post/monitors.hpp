@@ -23,6 +23,7 @@ class Simulation;
 
 struct ErrorNorms {
   double v_l2 = 0, p_l2 = 0, v_norm = 0, p_norm = 0;
+  double div_l2 = 0; // ||div v_h||: the exact flow is divergence-free
 };
 
 class Monitors {
