@@ -227,7 +227,8 @@ const std::vector<Section> &sections() {
        {{"monitor_surfaces", "", "-", "flux, area, force, mean pressure per named boundary"},
         {"monitor_fluid_volume", "false", "-", "fluid volume per step"},
         {"monitor_fluid_energy", "false", "-",
-         "fluid kinetic energy, dissipation (viscous + grad-div), convective form's power per step"},
+         "fluid kinetic energy, dissipation (viscous + grad-div), convective form's power per "
+         "step"},
         {"probe_points", "", "m", "fluid probes x,y,z;x,y,z"},
         {"solid_probe_points", "", "m", "solid displacement probes at material points"},
         {"monitor_solid_energy", "false", "-", "kinetic and stored energy of the solid"},
