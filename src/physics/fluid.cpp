@@ -196,20 +196,19 @@ void FluidModule::add_jacobian(const StepContext &ctx, Mat J) {
     for (int a = 0; a < 10; ++a)
       for (int b = 0; b < 10; ++b)
         S[a][b] = sm * ref_.M[a][b] + E[0][0][a][b] + E[1][1][a][b] + E[2][2][a][b];
-    // Grad-div (after the trace above, which it must not enter): gamma cf |det| int dN_a,i dN_b,j.
-    if (gd > 0)
-      for (size_t q = 0; q < rule2_.weight.size(); ++q) {
-        double dN[10][3], Nd[10];
-        p2_tet(rule2_.lambda[q].data(), g, Nd, dN);
-        const double s = rule2_.weight[q] * det * gd * cf;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j)
-            for (int a = 0; a < 10; ++a) {
-              const double t = s * dN[a][i];
-              for (int b = 0; b < 10; ++b)
-                E[i][j][a][b] += t * dN[b][j];
+    // Grad-div, gamma cf |det| int dN_a,i dN_b,j, is the viscous transpose block E_ji[a][b] scaled
+    // by gamma / mu: added from it (after the trace above, which it must not enter).
+    if (gd > 0) {
+      const double r = gd / mu;
+      for (int i = 0; i < 3; ++i)
+        for (int j = i; j < 3; ++j)
+          for (int a = 0; a < 10; ++a)
+            for (int b = 0; b < 10; ++b) {
+              const double eij = E[i][j][a][b], eji = E[j][i][a][b];
+              E[i][j][a][b] += r * eji;
+              if (j != i) E[j][i][a][b] += r * eij;
             }
-      }
+    }
     if (conv) {
       // rho N_a N_b G_ij with G = grad v, linear: G(q) = sum_k lambda_k(q) G_k.
       for (int kv = 0; kv < 4; ++kv) {
