@@ -104,12 +104,31 @@ RunState remesh_on_root(const Gathered &gm, const Groups &g, const RunState &old
   std::vector<int> &new_index = nm.new_index, &old_of = nm.old_of;
   new_index.assign(nv, -1);
   std::vector<Point> &y = nm.y; // new vertex positions (= the new reference)
+  // A solid vertex goes where the solid is: its material position plus the converged
+  // displacement D_n.  The mesh followed the step's predicted displacement (the geometry is
+  // explicit), which misses D_n by the predictor's error; a new reference there would make the
+  // next step's mesh move by that error however small the step (a fresh sliver inverted at any
+  // dt).  Here the next step's mesh moves by dt V_n + O(dt^2).
+  double shift = 0;
   for (size_t v = 0; v < nv; ++v)
     if (keep[v]) {
       new_index[v] = (int)y.size();
-      y.push_back(x[v]);
+      Point p = x[v];
+      double vals[9];
+      if (in_solid[v]) {
+        if (!node_values(old.dofs, Xref[v].data(), vals))
+          throw std::logic_error("remesh: a solid vertex has no displacement in the state");
+        double s2 = 0;
+        for (int d = 0; d < 3; ++d) {
+          p[d] = V.values[6 * v + 3 + d] + vals[6 + d];
+          s2 += (p[d] - x[v][d]) * (p[d] - x[v][d]);
+        }
+        shift = std::max(shift, std::sqrt(s2));
+      }
+      y.push_back(p);
       old_of.push_back((int)v);
     }
+  rep.solid_shift = shift;
   nm.n_kept = y.size();
   std::vector<Tri> btris;
   std::vector<Point> inward; // unit normal into the fluid per boundary triangle
@@ -240,7 +259,7 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space,
   long counts[3] = {rep.gap_vertices, rep.flips, rep.splits};
   MPI_Bcast(counts, 3, MPI_LONG, 0, comm);
   rep.gap_vertices = counts[0], rep.flips = counts[1], rep.splits = counts[2];
-  double r[12] = {rep.skewness_gmsh,
+  double r[13] = {rep.skewness_gmsh,
                   (double)rep.fluid_cells_before,
                   (double)rep.fluid_cells_after,
                   rep.skewness_before,
@@ -251,13 +270,15 @@ RunState remesh_fluid(const Mesh &mesh, const Space &space,
                   rep.kinetic_after,
                   rep.divergence_before,
                   rep.divergence_after,
-                  rep.mesh_seconds};
-  MPI_Bcast(r, 12, MPI_DOUBLE, 0, comm);
+                  rep.mesh_seconds,
+                  rep.solid_shift};
+  MPI_Bcast(r, 13, MPI_DOUBLE, 0, comm);
   rep.skewness_gmsh = r[0];
   rep.fluid_cells_before = std::lround(r[1]), rep.fluid_cells_after = std::lround(r[2]);
   rep.skewness_before = r[3], rep.skewness_after = r[4], rep.volume_before = r[5];
   rep.volume_after = r[6], rep.kinetic_before = r[7], rep.kinetic_after = r[8];
   rep.divergence_before = r[9], rep.divergence_after = r[10], rep.mesh_seconds = r[11];
+  rep.solid_shift = r[12];
   rep.memory_mb = peak_memory_mb();
   return s;
 }

@@ -79,6 +79,10 @@ void write_msh(const std::string &path, const std::vector<Point> &x, const std::
                const std::vector<double> &tri_mask, const Groups &g);
 double skewness_of(const std::vector<Point> &x, const Tet &t);
 
+// The dof values of a node with ALE reference position X from the state: out[3 h + c] for
+// component c of history h (V, A, D).  False if the state has no such node.
+bool node_values(const KeyedItems &dofs, const double X[3], double out[9]);
+
 // The state on the new mesh, and the report's measures (skewness, volume, kinetic energy,
 // divergence before and after).
 RunState transfer_state(const OldMesh &om, const NewMesh &nm, const RunState &old,

@@ -96,8 +96,9 @@ private:
   std::vector<std::vector<int>> bins_;
 };
 
-// The dof values of a node with reference position X (3 comps x 3 histories), from the state.
-static bool node_values(const KeyedItems &dofs, const double X[3], double out[9]) {
+} // namespace
+
+bool node_values(const KeyedItems &dofs, const double X[3], double out[9]) {
   for (int c = 0; c < 3; ++c) {
     const double key[4] = {X[0], X[1], X[2], (double)c};
     const long i = find_key(dofs, key, 4);
@@ -107,6 +108,8 @@ static bool node_values(const KeyedItems &dofs, const double X[3], double out[9]
   }
   return true;
 }
+
+namespace {
 
 // The pressure dof's three histories (its V is the pressure).
 static bool pressure_value(const KeyedItems &dofs, const double X[3], double out[3]) {

@@ -265,14 +265,15 @@ void RunReport::remeshed(const Output &out, const RemeshReport &r) {
   PetscPrintf(comm_,
               "fsi_app: remesh %zu at step %ld, t = %.6e s: worst fluid skewness %.3f -> %.3f "
               "(gmsh %.3f, %ld flips/moves, %ld splits), "
-              "fluid cells %ld -> %ld (%ld boundary vertices at gaps), volume "
+              "fluid cells %ld -> %ld (%ld boundary vertices at gaps), solid vertices moved to the "
+              "converged solid by up to %.2g m, volume "
               "change %.1e, kinetic "
               "energy change %.2e, "
               "div/grad %.1e -> %.1e, weak divergence %.1e -> %.1e (projected in %.2f s); %.2f s "
               "(gmsh %.2f s)\n",
               remeshes_.size(), r.step, r.time, r.skewness_before, r.skewness_after,
               r.skewness_gmsh, r.flips, r.splits, r.fluid_cells_before, r.fluid_cells_after,
-              r.gap_vertices, r.volume_after / r.volume_before - 1,
+              r.gap_vertices, r.solid_shift, r.volume_after / r.volume_before - 1,
               r.kinetic_after / r.kinetic_before - 1, r.divergence_before, r.divergence_after,
               r.weak_divergence, r.weak_divergence_projected, r.projection_seconds, r.seconds,
               r.mesh_seconds);
@@ -280,18 +281,19 @@ void RunReport::remeshed(const Output &out, const RemeshReport &r) {
                     "fluid_cells_after,volume_before,volume_after,kinetic_before,kinetic_after,"
                     "divergence_before,divergence_after,gmsh_seconds,seconds,peak_memory_mb,"
                     "gap_vertices,skewness_gmsh,flips,splits,weak_divergence,"
-                    "weak_divergence_projected,projection_seconds\n";
+                    "weak_divergence_projected,projection_seconds,solid_shift\n";
   char row[600];
   for (size_t i = 0; i < remeshes_.size(); ++i) {
     const RemeshReport &q = remeshes_[i];
     std::snprintf(row, sizeof row,
                   "%zu,%ld,%.10e,%.6f,%.6f,%ld,%ld,%.12e,%.12e,%.12e,%.12e,%.6e,%.6e,%.4f,%.4f,"
-                  "%.1f,%ld,%.6f,%ld,%ld,%.6e,%.6e,%.4f\n",
+                  "%.1f,%ld,%.6f,%ld,%ld,%.6e,%.6e,%.4f,%.4e\n",
                   i + 1, q.step, q.time, q.skewness_before, q.skewness_after, q.fluid_cells_before,
                   q.fluid_cells_after, q.volume_before, q.volume_after, q.kinetic_before,
                   q.kinetic_after, q.divergence_before, q.divergence_after, q.mesh_seconds,
                   q.seconds, q.memory_mb, q.gap_vertices, q.skewness_gmsh, q.flips, q.splits,
-                  q.weak_divergence, q.weak_divergence_projected, q.projection_seconds);
+                  q.weak_divergence, q.weak_divergence_projected, q.projection_seconds,
+                  q.solid_shift);
     csv += row;
   }
   out.write_file("remesh.csv", csv);

@@ -64,6 +64,9 @@ struct RemeshReport {
   // Weak divergence of the transferred velocity, and after the projection (velocity_projection.hpp;
   // -1: not projected), and the projection's seconds.
   double weak_divergence = 0, weak_divergence_projected = -1, projection_seconds = 0;
+  // Largest distance a solid vertex moved from the mesh's (predicted) position to the
+  // converged solid position it has in the new mesh [m].
+  double solid_shift = 0;
 };
 
 // Mesh the fluid again from the boundary of `mesh` at the positions of `state` (the state at the
