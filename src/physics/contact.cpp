@@ -118,6 +118,14 @@ std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius, bool
   return pairs;
 }
 
+void ContactModule::pick_wall_triangles() {
+  if (!wall_) return;
+  const ContactSurface &S = *surface_;
+  wall_pick_.assign(S.n_nodes(), WallPick{});
+  for (int n = 0; n < S.n_nodes(); ++n)
+    if (wall_node_[n]) wall_->nearest(S.x(n), wall_pick_[n].t, wall_pick_[n].region);
+}
+
 template <class F> void ContactModule::for_each_active(F &&f) {
   const ContactSurface &S = *surface_;
   for (const Pair &pr : pairs_within(p_.offset)) {
@@ -149,16 +157,15 @@ template <class F> void ContactModule::for_each_active(F &&f) {
   }
   if (!wall_) return;
   wall_min_gap_ = wall_->radius();
+  if (wall_pick_.size() != (size_t)S.n_nodes()) pick_wall_triangles(); // no solve begun yet
   for (int n = 0; n < S.n_nodes(); ++n) {
-    if (!wall_node_[n]) continue;
-    int t;
-    TriRegion region;
-    const double dn = wall_->nearest(S.x(n), t, region);
-    wall_min_gap_ = std::min(wall_min_gap_, dn);
-    if (t < 0 || dn >= p_.wall_offset || dn <= 1e-9 * p_.wall_offset) continue;
+    if (!wall_node_[n] || wall_pick_[n].t < 0) continue;
+    const int t = wall_pick_[n].t;
     double d, g[12], H[12][12];
     point_triangle_distance_derivatives(S.x(n), wall_->corner(t, 0), wall_->corner(t, 1),
-                                        wall_->corner(t, 2), region, d, g, H);
+                                        wall_->corner(t, 2), wall_pick_[n].region, d, g, H);
+    wall_min_gap_ = std::min(wall_min_gap_, d);
+    if (d >= p_.wall_offset || d <= 1e-9 * p_.wall_offset) continue;
     const int nodes[4] = {n, -1, -1, -1};
     f(nodes, p_.wall_offset - d, S.area(n), g, H); // one way: the whole node area
   }
@@ -166,6 +173,7 @@ template <class F> void ContactModule::for_each_active(F &&f) {
 
 void ContactModule::begin_solve(const StepContext &ctx) {
   surface_->update(ctx);
+  pick_wall_triangles();
   // The pattern must hold every pair within offset + margin (each node's nearest triangle per
   // piece).  When it lacks one, it grows to every node-triangle pair within offset + 2 margin,
   // nearest or not, so that it does not grow again until the surfaces have moved by a margin:

@@ -91,6 +91,7 @@ private:
   // against a wall triangle nodes[1..3] are -1, against the axis rod -2 (only the node's 3
   // coordinates count).
   template <class F> void for_each_active(F &&f);
+  void pick_wall_triangles(); // wall_pick_ from the surface's current position
   static unsigned long long key(int a, int b) {
     if (a > b) std::swap(a, b);
     return ((unsigned long long)a << 32) | (unsigned)b;
@@ -99,6 +100,15 @@ private:
   ContactParams p_;
   std::shared_ptr<ContactWall> wall_;
   std::vector<char> wall_node_; // surface nodes that contact the walls
+  // Each wall node's nearest wall triangle and region, picked once per Newton solve (t = -1:
+  // none in range).  The distance to a faceted wall is the smallest of the facets' distances,
+  // with a kink where two facets are equally near; a node on it switched facets between
+  // iterations and Newton stalled at a linear rate (the opening valve at 102.5 ms).
+  struct WallPick {
+    int t = -1;
+    TriRegion region = TriRegion::face;
+  };
+  std::vector<WallPick> wall_pick_;
   double wall_min_gap_ = 0, axis_min_distance_ = 0;
   std::unordered_set<unsigned long long> pattern_, pending_;
   bool changed_ = false;
