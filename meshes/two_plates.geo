@@ -6,7 +6,9 @@
 // that closes: the pressure outside the plates exceeds the pressure in the gap.
 // Groups: volumes plates (and fluid); surfaces base (the plates' feet, clamped), outer (the faces
 // that look away from the gap), interface (every plate face but the base), and with the fluid:
-// inlet (z = H), outlet (the drain's end, z = -dr), walls (the rest).
+// inlet (z = H), outlet (the drain's end, z = -dr), walls (the rest).  With wr > 0 the box's face
+// x = 0 is replaced by a cylinder of radius wr, axis along z at (wr, D/2): a concave wall that
+// gmsh facets, for the rigid-wall contact's facet kinks (it touches x = 0 at y = D/2 only).
 SetFactory("OpenCASCADE");
 If (!Exists(h)) h = 0.001; EndIf
 If (!Exists(t)) t = 0.001; EndIf
@@ -18,6 +20,7 @@ If (!Exists(D)) D = 0.008; EndIf
 If (!Exists(H)) H = 0.016; EndIf
 If (!Exists(fluid)) fluid = 1; EndIf
 If (!Exists(dr)) dr = 0.004; EndIf
+If (!Exists(wr)) wr = 0; EndIf
 // plate b shifted by sy in y and meshed hb times finer: meshes that do not mirror each other
 If (!Exists(sy)) sy = 0; EndIf
 If (!Exists(hb)) hb = 1; EndIf
@@ -28,9 +31,16 @@ Box(1) = {xa, y0, 0, t, w, hp};
 Box(2) = {xb, y0 + sy, 0, t, w, hp};
 e = 1e-4 * W;
 If (fluid)
-  Box(3) = {0, 0, 0, W, D, H};
+  If (wr > 0) // the box reaches past x = 0 so that no face is tangent to the cylinder
+    Box(3) = {-W, 0, 0, 2 * W, D, H};
+    Cylinder(5) = {wr, D / 2, -H, 0, 0, 3 * H, wr};
+    v3 = BooleanIntersection{ Volume{3}; Delete; }{ Volume{5}; Delete; };
+  Else
+    Box(3) = {0, 0, 0, W, D, H};
+    v3 = 3;
+  EndIf
   Box(4) = {xa + t, y0, -dr, g, w, dr};
-  v() = BooleanFragments{ Volume{3, 4}; Delete; }{ Volume{1, 2}; Delete; };
+  v() = BooleanFragments{ Volume{v3, 4}; Delete; }{ Volume{1, 2}; Delete; };
 EndIf
 pl() = Volume In BoundingBox{xa - e, y0 - e, -e, xb + t + e, y0 + sy + w + e, hp + e};
 Physical Volume("plates", 2) = {pl()};
