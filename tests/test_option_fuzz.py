@@ -49,7 +49,7 @@ INTEGERS = {"out_fields_every", "checkpoint_every", "checkpoint_crash_test", "si
             "sim_pattern_rebuild_every", "ts_max_steps", "step_grow_after", "step_easy_newton",
             "fluid_quad_degree", "solid_quad_degree", "ale_geometry_iterations",
             "ale_remesh_every", "ale_remesh_verbose",
-            "ale_remesh_test_fault", "valve_goa_pixels"}
+            "ale_remesh_test_fault", "valve_goa_pixels", "test_fault_residual"}
 EXPRESSIONS = {"bc_<b>_expr"}
 
 

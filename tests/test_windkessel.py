@@ -10,10 +10,15 @@
 - Newton converges with the outlet's dense block in the Jacobian (<= 4 per step);
 - restart: 15 steps on 1 rank, then the rest on 2 ranks from the checkpoint = the uninterrupted
   run (P_c to 1e-8 relative); the same across two remeshes (the state used to be dropped there);
+- a residual evaluation that meets an inverted solid element on one rank only
+  (-test_fault_residual 5, 2 ranks): the step is cut and the run completes; the Windkessel's sum
+  over the ranks used to be skipped on that rank alone, and the other waited in it for ever (the
+  pressure-driven valve hung at 123 ms; this run hung until killed);
 - bad input (non-positive R or C, a missing or non-finite parameter, an unknown Jacobian kind):
   one error line naming the option, exit 2."""
 import math
 import os
+import subprocess
 from fsitest import check, finish, run, scene
 
 WK = scene("windkessel_pipe")
@@ -85,6 +90,16 @@ if m.code == 0 and "0.01" in runs and runs["0.01"].code == 0:
     want = runs["0.01"].monitor[-1]["outlet_wk_capacitor_pressure"]
     got = m.monitor[-1]["outlet_wk_capacitor_pressure"]
     check(abs(got - want) <= 1e-8 * want, f"P_c across 2 remeshes {got:.10f} = {want:.10f}")
+
+# One rank's residual outside its domain (an inverted solid element) while the other sums the
+# outflow: the step is cut, nobody waits for ever.
+try:
+    f = run(WK, np=2, extra=["-ts_max_time", "0.05", "-test_fault_residual", "5"], timeout=120)
+    cuts = [l for l in f.out.splitlines() if "failed with" in l and "inverted" in l]
+    check(f.code == 0 and len(cuts) == 1,
+          f"an inverted element on rank 0 only: step cut ({len(cuts)}), run completes ({f.code})")
+except subprocess.TimeoutExpired:
+    check(False, "an inverted element on rank 0 only: the run hung (killed after 120 s)")
 
 bad = [("R_p", "0"), ("C", "-1e-9"), ("R_d", "0"), ("C", "nan"), ("p0", "inf"),
        ("jacobian", "dense"), ("R_d", "")]

@@ -31,6 +31,10 @@ CoupledSystem::CoupledSystem(const Space &space) : space_(space) {
   inexact_gamma_ = opt::nonnegative("newton_inexact_gamma", 0.0);
   pattern_every_ = opt::integer("sim_pattern_rebuild_every", 0);
   pc_rebuild_krylov_ = opt::integer("newton_pc_rebuild_krylov", 0);
+  fault_residual_ = opt::integer("test_fault_residual", 0);
+  if (fault_residual_ < 0)
+    throw InputError("option -test_fault_residual must be >= 0 (0: off; N: the N-th residual "
+                     "evaluation meets an inverted element on rank 0)");
   if (pc_rebuild_krylov_ < 0) throw InputError("option -newton_pc_rebuild_krylov must be >= 0");
   if (pattern_every_ < 0) throw InputError("option -sim_pattern_rebuild_every must be >= 0");
   F_ = space.create_global();
@@ -294,14 +298,27 @@ bool CoupledSystem::residual(Vec U, Vec F) {
   ctx_.U = u;
   for (auto &m : modules_)
     m->prepare(ctx_);
+  // An inverted solid element puts U outside the residual's domain (SolveError).  Every rank
+  // still adds every other term: the boundaries' terms are collective (a Windkessel sums its
+  // outflow over the ranks), and a rank that skipped them left the others waiting in that sum
+  // for ever (the pressure-driven valve hung at 123 ms in a line search that inverted an
+  // element on one rank only).
   bool valid = true;
-  try {
-    for (auto &m : modules_)
+  const bool fault = fault_residual_ > 0 && cost_.residuals + 1 == fault_residual_ &&
+                     space_.rstart == 0; // -test_fault_residual: rank 0 only
+  auto guarded = [&](auto &&add) {
+    try {
+      add();
+    } catch (SolveError &) {
+      valid = false;
+    }
+  };
+  for (auto &m : modules_)
+    guarded([&] {
+      if (fault && &m == &modules_.front()) throw SolveError("test fault: inverted element");
       m->add_residual(ctx_, f);
-    bcs_->add_residual(ctx_, f);
-  } catch (SolveError &) { // an inverted solid element: outside the domain of the residual
-    valid = false;
-  }
+    });
+  guarded([&] { bcs_->add_residual(ctx_, f); });
   FSI_CALL(VecRestoreArray(Floc_, &f));
   FSI_CALL(VecZeroEntries(F));
   space_.add_to_global(Floc_, F);

@@ -263,7 +263,9 @@ const std::vector<Section> &sections() {
         {"newton_inexact_gamma", "0 (off)", "-",
          "linear solves only to gamma x the Newton target (|F0| snes_rtol), >= ksp_rtol"},
         {"newton_pc_rebuild_krylov", "0 (off)", "-",
-         "a lagged preconditioner is rebuilt when a linear solve took more Krylov iterations"}}},
+         "a lagged preconditioner is rebuilt when a linear solve took more Krylov iterations"},
+        {"test_fault_residual", "0", "-",
+         "N: the N-th residual evaluation meets an inverted solid element on rank 0 (tests)"}}},
   };
   return s;
 }

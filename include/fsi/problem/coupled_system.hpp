@@ -104,6 +104,7 @@ private:
   Mat J_ = nullptr;
   SNES snes_ = nullptr;
   bool inverted_ = false;
+  long fault_residual_ = 0; // -test_fault_residual N: evaluation N fails on rank 0 (tests)
   bool rebuild_preconditioner_ = false; // after a step-size change, with a lagged preconditioner
   double preconditioner_dt_ = 0;        // the dt of the last such rebuild
   std::vector<std::pair<PetscInt, double>> bc_values_;
