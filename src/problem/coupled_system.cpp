@@ -315,6 +315,8 @@ bool CoupledSystem::residual(Vec U, Vec F) {
   };
   for (auto &m : modules_)
     guarded([&] {
+      // thrown from inside a module's term, as the material does, so that a test of the fault
+      // also catches a guard that covers more than one term again
       if (fault && &m == &modules_.front()) throw SolveError("test fault: inverted element");
       m->add_residual(ctx_, f);
     });
