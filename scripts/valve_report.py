@@ -1,12 +1,19 @@
 """Figures of a valve run for a note or a paper, from its monitor.csv, remesh.csv and summary.json:
   /usr/bin/python3 scripts/valve_report.py DIR [DIR ...] [--every MS] [--period S] [--hold MS]
-                                           [--diastole S] [--stroke ML]
+                                           [--diastole S] [--stroke ML] [--closed COND]
 Several DIRs are the pieces of one run continued by -restart, in order: where a later piece
 starts, the earlier one's rows stop.  Prints (markdown)
   - the state every MS milliseconds (default 25): flow rate, transvalvular pressure drop, orifice
     area, leaflet displacement and stress, contact pairs, sealed cells, Newton, dt;
   - per cycle of the inlet's period (default 1.1 s): forward (ejected) and backward (regurgitant)
-    volume through the inlet, and their ratio;
+    volume through the inlet, and their ratio; and the regurgitant volume split the clinical way
+    at the instant the valve closes (--closed COND, default contact_pairs>100, the valve scenes'
+    own test: the first row after the cycle's peak forward flow where COND holds; COND is
+    COLUMN>VALUE or COLUMN<VALUE joined by &, on monitor.csv's columns): the closing volume (flow
+    back before that instant) against the ejected volume (flow forward while the valve is not
+    closed), and the leakage volume (the net flow back from it to the cycle's
+    end, so that a closed valve's ringing back and forth counts only by its net, plus the net
+    flow back while closed before the cycle's opening: the previous diastole's tail);
   - with --hold MS (a closed valve under a held load, from MS to the end): the leak, i.e. the mean
     flow back through the valve over whole periods of the leaflets' ringing (from the first to the
     last upward crossing of the mean), the same leak from a fit of a decaying oscillation about
@@ -41,12 +48,43 @@ def take(flag, default):
     return value
 
 
+def take_text(flag, default):
+    """The word after FLAG in args (removed from them), else default."""
+    if flag not in args:
+        return default
+    i = args.index(flag)
+    if i + 1 >= len(args):
+        sys.exit(f"valve_report: {flag} needs a condition, e.g. {flag} '{default}'")
+    value = args[i + 1]
+    del args[i:i + 2]
+    return value
+
+
+def parse_condition(text):
+    """COLUMN>VALUE or COLUMN<VALUE terms joined by & as (column, sign, value) triples; a malformed
+    term exits naming the option."""
+    terms = []
+    for term in text.split("&"):
+        op = ">" if ">" in term else "<" if "<" in term else None
+        column, _, value = term.partition(op) if op else ("", "", "")
+        try:
+            terms.append((column.strip(), 1.0 if op == ">" else -1.0, float(value)))
+        except ValueError:
+            op = None
+        if not op or not column.strip():
+            sys.exit(f"valve_report: --closed '{text}': each term must be COLUMN>VALUE or COLUMN<VALUE "
+                     "(joined by &), e.g. --closed 'contact_pairs>100'")
+    return terms
+
+
 every = take("--every", 25.0)
 period = take("--period", 1.1)
 hold = take("--hold", None)
 hold = hold * 1e-3 if hold is not None else None
 diastole = take("--diastole", 0.79)
 stroke = take("--stroke", 102.1)
+closed_text = take_text("--closed", "contact_pairs>100")
+closed_terms = parse_condition(closed_text)
 if diastole <= 0 or stroke <= 0:
     sys.exit("valve_report: --diastole and --stroke must be positive (seconds, millilitres), e.g. --diastole 0.79 --stroke 102.1")
 if not args:
@@ -55,6 +93,10 @@ mon = stitch([read_rows(d, "monitor.csv") for d in args], "step")
 rem = stitch([read_rows(d, "remesh.csv") for d in args], "step")
 if not mon:
     sys.exit("valve_report: no monitor rows in " + " ".join(args))
+missing = sorted({c for c, _, _ in closed_terms if c not in mon[0]})
+if missing:
+    sys.exit(f"valve_report: --closed '{closed_text}': the run has no monitor column " +
+             ", ".join(f"'{c}'" for c in missing) + "; its columns: " + ", ".join(mon[0]))
 dt0 = max(r["dt"] for r in mon)
 
 print("| t [ms] | Q [L/min] | dp [Pa] | orifice [cm^2] | of annulus | leaflet max u [mm] | von Mises [kPa] | contact pairs | sealed cells | Newton | dt [ms] |")
@@ -82,6 +124,44 @@ for r in mon:
     cycles[c] = (f + max(q, 0), b + max(-q, 0), min(t0, r["time"]), r["time"])
 for c, (f, b, t0, t1) in sorted(cycles.items()):
     print(f"| {c + 1} | {t0*1e3:.1f} | {t1*1e3:.1f} | {f*1e6:.2f} | {b*1e6:.3f} | {b/f*100 if f else 0:.2f} % |")
+
+
+def is_closed(r):
+    return all(sign * (r[col] - value) > 0 for col, sign, value in closed_terms)
+
+
+def regurgitation(rows, t_start):
+    """For one cycle's rows (flow to the aorta q = -inlet_flux, volumes by q x the row's step as in
+    the table above): the ejected volume (flow forward while the valve is not closed), closure
+    time (None if not closed), closing volume (flow back between the peak forward flow and the
+    closure), leakage after the closure and leakage before the opening (net flow back over the
+    rows before the peak where the valve counts as closed: the tail of the previous diastole)."""
+    steps = np.diff([t_start] + [r["time"] for r in rows])
+    q = np.array([-r["inlet_flux"] for r in rows])
+    vol = q * steps
+    peak = int(np.argmax(q))
+    tc = next((i for i in range(peak + 1, len(rows)) if is_closed(rows[i])), None)
+    end = tc if tc is not None else len(rows)
+    shut_before = [i for i in range(peak) if is_closed(rows[i])]
+    open_rows = np.setdiff1d(np.arange(end), shut_before)
+    ejected = float(np.sum(np.maximum(vol[open_rows], 0)))
+    closing = float(np.sum(np.maximum(-vol[peak + 1:end], 0)))
+    after = float(-np.sum(vol[end:]))
+    before = float(-np.sum(vol[shut_before]))
+    return ejected, rows[tc]["time"] if tc is not None else None, closing, after, before
+
+
+print(f"\n| cycle | closed at [ms] (--closed {closed_text}) | ejected [mL] | closing [mL] | leakage after "
+      "closure [mL] | leakage before opening [mL] | regurgitant [mL] | regurgitant fraction |")
+print("|---|---|---|---|---|---|---|---|")
+for c in sorted(cycles):
+    rows = [r for r in mon if int(r["time"] / period - 1e-12) == c]
+    t_start = max([r["time"] for r in mon if r["time"] < rows[0]["time"]], default=0.0)
+    f, tc, closing, after, before = regurgitation(rows, t_start)
+    shut = f"{tc*1e3:.1f}" if tc is not None else f"not by {rows[-1]['time']*1e3:.1f}"
+    reg = closing + after + before
+    print(f"| {c + 1} | {shut} | {f*1e6:.2f} | {closing*1e6:.3f} | {after*1e6:.3f} | {before*1e6:.3f} | {reg*1e6:.3f} | "
+          f"{reg/f*100 if f else 0:.2f} % |")
 
 
 def leak_over_periods(t, q):

@@ -1,0 +1,79 @@
+"""scripts/valve_report.py's per-cycle volumes on a synthetic monitor.csv with known integrals:
+two cycles of 1.1 s, each a half-sine ejection (peak 20 L/min over 0.3 s; the ejected volume, not the closed
+valve's forward swings), a closing backflow of
+5 L/min for 30 ms, then a closed valve (contact_pairs 200) leaking 0.5 L/min under a ringing of
++-2 L/min over whole periods (it must count only by its net); the second cycle starts closed and
+leaks until its opening at 50 ms.  Also: a condition on a missing column and a malformed one
+exit non-zero naming --closed."""
+import math
+import os
+import re
+import subprocess
+import tempfile
+
+from fsitest import SRC, check, finish
+
+DT, T = 5e-4, 1.1
+LPM = 1 / 6e4  # m^3/s per L/min
+
+
+def flow(s):
+    """Flow to the aorta [L/min] and contact pairs at time s into a cycle."""
+    if s <= 0.3 + 1e-12:
+        return 20 * math.sin(math.pi * s / 0.3), 0
+    if s <= 0.33 + 1e-12:
+        return -5.0, 0
+    return -0.5 + 2 * math.sin(2 * math.pi * (s - 0.33 - DT) / 0.014), 200
+
+
+def write_run(d):
+    with open(os.path.join(d, "monitor.csv"), "w") as f:
+        f.write("step,time,newton,krylov,step_seconds,dt,inlet_flux,contact_pairs\n")
+        n = int(round(T / DT))
+        for k in range(1, 2 * n + 1):
+            t, s = k * DT, (k - n * (k > n)) * DT
+            q, pairs = flow(s)
+            if k > n and k - n <= 100:  # the second cycle starts closed for 50 ms
+                q, pairs = -0.5, 200
+            f.write(f"{k},{t:.10f},3,10,1.0,{DT},{-q * LPM:.12e},{pairs}\n")
+
+
+def report(*args):
+    p = subprocess.run(["/usr/bin/python3", os.path.join(SRC, "scripts", "valve_report.py"), *args],
+                       capture_output=True, text=True)
+    return p.returncode, p.stdout + p.stderr
+
+
+with tempfile.TemporaryDirectory() as d:
+    write_run(d)
+    code, out = report(d, "--every", "1000")
+    check(code == 0, f"valve_report on the synthetic run: rc {code}" + ("" if code == 0 else "\n" + out))
+    rows = re.findall(r"^\| (\d) \| ([0-9.]+) \| ([0-9.]+) \| ([0-9.-]+) \| ([0-9.-]+) \| ([0-9.-]+) "
+                      r"\| ([0-9.-]+) \| ([0-9.]+) % \|$", out, re.M)
+    check(len(rows) == 2, f"the split table has {len(rows)} cycle rows (2 expected)" +
+          ("" if len(rows) == 2 else ":\n" + out))
+    ml = 1e6 * LPM  # mL per (L/min x s)
+    forward = 20 * 0.6 / math.pi * ml
+    closing = 5 * 0.03 * ml
+    after = 0.5 * (T - 0.33) * ml
+    before = [0.0, 0.5 * 0.05 * ml]
+    for c, r in enumerate(rows):
+        closed_at, f, cl, la, lb, reg, frac = (float(x) for x in r[1:])
+        check(abs(closed_at - (1000 * (c * T + 0.33 + DT))) < 0.06,
+              f"cycle {c + 1}: closed at {closed_at} ms, expected {1000 * (c * T + 0.33 + DT):.1f}")
+        # The second cycle's ejection starts 50 ms late: its half-sine loses that part.  The report
+        # sums flow x step over the rows (right end points): within 0.05 mL of the integral here.
+        f_exp = forward if c == 0 else 20 * (0.3 / math.pi) * (1 + math.cos(math.pi * 0.05 / 0.3)) * ml
+        f_rows = sum(flow(k * DT)[0] for k in range(1 if c == 0 else 101, 601)) * DT * ml
+        for name, got, want, tol in (("ejected", f, f_rows, 0.006), ("ejected (integral)", f, f_exp, 0.05), ("closing", cl, closing, 0.001),
+                                     ("leakage after closure", la, after, 0.001),
+                                     ("leakage before opening", lb, before[c], 0.001),
+                                     ("regurgitant", reg, closing + after + before[c], 0.002)):
+            check(abs(got - want) <= tol, f"cycle {c + 1}: {name} {got} mL, expected {want:.4f}")
+        check(abs(frac - 100 * reg / f) < 0.01, f"cycle {c + 1}: fraction {frac} % of {reg}/{f}")
+    for bad, word in (("seal_cells>3", "no monitor column 'seal_cells'"),
+                      ("contact_pairs=3", "COLUMN>VALUE or COLUMN<VALUE")):
+        code, out = report(d, "--closed", bad)
+        check(code != 0 and "--closed" in out and word in out,
+              f"--closed {bad}: rc {code}, {out.strip()}")
+finish()
