@@ -146,8 +146,8 @@ def regurgitation(rows, t_start):
     open_rows = np.setdiff1d(np.arange(end), shut_before)
     ejected = float(np.sum(np.maximum(vol[open_rows], 0)))
     closing = float(np.sum(np.maximum(-vol[peak + 1:end], 0)))
-    after = float(-np.sum(vol[end:]))
-    before = float(-np.sum(vol[shut_before]))
+    after = float(-np.sum(vol[end:])) + 0.0  # + 0.0: no "-0.000" for an empty sum
+    before = float(-np.sum(vol[shut_before])) + 0.0
     return ejected, rows[tc]["time"] if tc is not None else None, closing, after, before
 
 

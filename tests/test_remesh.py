@@ -7,6 +7,8 @@ smoothing alone inverts cells within two steps).
    block's edge, where the energy sits, 0.1-2.5 % at the other remeshes); every new mesh has the
    old interface triangles; the fluid volume monitor stays constant over the run (the block
    only translates); no cell inverts; fields_all.xdmf plays the fields over every mesh.
+1b. With -ale_remesh_skewness_fresh a degraded cell must also be worse than the newest mesh's
+   worst cell: fewer remeshes (measured 9 -> 8), each triggered above that cell.
 2. A mild case (0.02 m/s inflow past the block, moved 20x less, the mesh following the
    converged solid) with a remesh forced every 2 steps against the same run without
    remeshing: the inlet pressure and the probe velocity behind the block differ by < 5 % of
@@ -22,8 +24,9 @@ smoothing alone inverts cells within two steps).
    box): one clear line, exit 3, the last converged state in checkpoint.h5, no summary claiming
    success."""
 import glob
-import shutil
 import os
+import re
+import shutil
 from fsitest import check, finish, run, scene
 
 BLOCK = scene("remesh_block")
@@ -85,6 +88,30 @@ if ra.code == 0:
           f"fields_all.xdmf holds the 4 field steps on {len(parts)} meshes")
     s = ra.summary["remesh"]
     check(s["count"] == len(rem) and s["seconds"] > 0, "summary.json counts the remeshes and their time")
+
+# 1b. -ale_remesh_skewness_fresh: with the trigger at 0.6, below what gmsh makes here (new meshes'
+# worst cells 0.76-0.85), a degraded cell must also be worse than the current mesh's worst cell
+# (up to 0.95).  Measured: 9 remeshes without it, 8 with it (the 4th, at a degraded 0.779 on a
+# mesh whose worst cell was 0.786, is not made).  Each trigger then names its raised value: the
+# worst cell of the mesh the previous remesh made.
+low = ["-ts_max_time", "0.06", "-ale_remesh_skewness", "0.6"]
+r_low = run(BLOCK, extra=low)
+r_fresh = run(BLOCK, extra=low + ["-ale_remesh_skewness_fresh", "0.95"])
+check(r_low.code == 0 and r_fresh.code == 0, "the pushed block with a 0.6 trigger, with and without "
+      "-ale_remesh_skewness_fresh, converges")
+if r_low.code == 0 and r_fresh.code == 0:
+    n_low = len(csv_rows(os.path.join(r_low.dir, "remesh.csv")))
+    rem = csv_rows(os.path.join(r_fresh.dir, "remesh.csv"))
+    check(len(rem) < n_low, f"fewer remeshes when a new mesh would be no better ({len(rem)} < {n_low})")
+    trig = [(float(d), float(t)) for d, t in re.findall(
+        r"degraded ([0-9.]+) at \S+ m, trigger: this mesh's worst cell ([0-9.]+)\)", r_fresh.out)]
+    newest = [r["skewness_after"] for r in rem]
+    check(len(trig) == len(rem) and all(d > t for d, t in trig) and
+          all(abs(t - w) < 1e-3 for (_, t), w in zip(trig[1:], newest[:-1])),
+          "each remesh is triggered by a degraded cell worse than the previous new mesh's worst "
+          "cell: " + ", ".join(f"{d:.3f}>{t:.3f}" for d, t in trig) + " (new meshes: " +
+          ", ".join(f"{w:.3f}" for w in newest) + ")")
+    check(min(m["mesh_min_jacobian"] for m in r_fresh.monitor) > 0, "no fluid cell inverts")
 
 # 2. A forced remesh on a mild case changes the answer by little.  The geometry is made implicit
 # (the mesh follows the converged solid, -ale_geometry_iterations) so that the comparison sees

@@ -2,6 +2,7 @@
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fsi {
@@ -19,6 +20,10 @@ Ale::Ale(const Space &space, std::unique_ptr<MeshMotion> motion,
   ignore_sealed_ = opt::flag("ale_remesh_ignore_sealed", false);
   if (remesh_skewness_ >= 1)
     throw InputError("-ale_remesh_skewness must be below 1 (0 turns remeshing off)");
+  fresh_cap_ = opt::nonnegative("ale_remesh_skewness_fresh", 0.0);
+  if (fresh_cap_ >= 1)
+    throw InputError("option -ale_remesh_skewness_fresh must be below 1 (0: off), e.g. 0.95");
+  trigger_ = remesh_skewness_;
   Xn_ = space.X;
   dn_.assign(space.X.size(), 0.0);
 }
@@ -103,6 +108,14 @@ void Ale::check(const char *when, long step) {
       space_.cell_points(k, space_.X.data(), P);
       skewness0_.push_back(tet_skewness(P));
     }
+    // A new mesh of this boundary is no better than its worst cell: a degraded cell that is not
+    // worse than that would only buy another mesh with the same worst cell (and a remesh's
+    // interpolation and projection, which take 1-4 % of the kinetic energy each time).
+    double worst = 0, global = 0;
+    for (double s : skewness0_)
+      worst = std::max(worst, s);
+    MPI_Allreduce(&worst, &global, 1, MPI_DOUBLE, MPI_MAX, PetscObjectComm((PetscObject)space_.dm));
+    if (fresh_cap_ > 0) trigger_ = std::max(remesh_skewness_, std::min(fresh_cap_, global));
   }
   std::vector<char> sealed;
   if (remeshing() && ignore_sealed_ && sealed_) sealed_(sealed);
@@ -115,18 +128,20 @@ void Ale::check(const char *when, long step) {
   const double skew = remeshing() ? quality_.max_degraded_skewness : quality_.max_skewness;
   const bool hard = quality_.min_jacobian <= min_jacobian_ || skew >= max_skewness_;
   const bool before = std::string(when) == "before";
-  const bool soft = before && (quality_.max_degraded_open > remesh_skewness_ ||
+  const bool soft = before && (quality_.max_degraded_open > trigger_ ||
                                quality_.min_jacobian < remesh_min_ratio_);
   char msg[500];
   if (remesh && (hard || soft)) {
     std::snprintf(msg, sizeof msg,
                   "mesh %s step %ld: worst skewness %.3f (degraded %.3f%s at %.4g,%.4g,%.4g m, "
-                  "-ale_remesh_skewness %.3g), smallest volume ratio %.3g at %.4g,%.4g,%.4g m "
+                  "%s %.3g), smallest volume ratio %.3g at %.4g,%.4g,%.4g m "
                   "(-ale_remesh_min_volume_ratio %.3g)",
                   when, step, quality_.max_skewness, quality_.max_degraded_open,
                   sealed.empty() ? "" : " outside sealed gaps", quality_.where_degraded_open[0],
                   quality_.where_degraded_open[1], quality_.where_degraded_open[2],
-                  remesh_skewness_, quality_.min_jacobian, quality_.where[0], quality_.where[1],
+                  trigger_ > remesh_skewness_ ? "trigger: this mesh's worst cell"
+                                              : "-ale_remesh_skewness",
+                  trigger_, quality_.min_jacobian, quality_.where[0], quality_.where[1],
                   quality_.where[2], remesh_min_ratio_);
     throw RemeshNeeded(msg);
   }

@@ -80,6 +80,9 @@ private:
   int geometry_iterations_ = 0;
   double geometry_rtol_ = 1e-6, min_jacobian_ = 0, max_skewness_ = 0.99;
   double remesh_skewness_ = 0.9, remesh_min_ratio_ = 0.1;
+  // -ale_remesh_skewness_fresh: the trigger raised to the reference mesh's worst cell, up to this
+  // (0: off); trigger_ is the skewness a degraded cell must pass.
+  double fresh_cap_ = 0, trigger_ = 0.9;
   bool fresh_ = false, ignore_sealed_ = false;
   std::function<void(std::vector<char> &)> sealed_;
   std::vector<double> skewness0_; // per fluid cell, in the reference mesh
