@@ -7,16 +7,18 @@
 // B and node of B against A, hence the 1/2).  The residual adds dE/dx on the momentum rows of
 // the nodes involved; the Jacobian adds the exact Hessian (gap derivatives by automatic
 // differentiation) times d(u_af)/dv: the consistent tangent.  Pairs are found on the deformed
-// configuration at every evaluation; the matrix pattern holds the pairs within delta + margin
-// of the start of each solve and is rebuilt when a pair outside it comes near.  Pieces are the
-// connected parts of the surface: a piece never contacts itself (no self-contact).
-// Options (prefix -contact_): surface NAME (default "interface"), offset [m] (required),
-// penalty k [Pa/m], ramp s [m] (default offset / 4), pattern_margin [m] (default offset).
-// Rigid walls (contact_wall.hpp): -contact_walls GROUPS (fluid boundary groups, default none),
-// wall_offset [m] (default offset), wall_exclude [m] (default 2 wall_offset): the same pressure
-// law against the nearest wall triangle, on the surface node alone (the wall does not move).
-// Axis rod: -contact_axis_radius R [m] (default 0: none), -contact_axis X,Y,Z,EX,EY,EZ (a point
-// and the direction; default the z axis): every surface node keeps R from the line, with the
+// configuration at the start of each Newton solve (each node's nearest triangle per piece within
+// delta + margin, and the nearest part of it); within the solve the gap is to that triangle, so
+// that the residual is smooth where two triangles are equally near.  The matrix pattern holds the
+// pairs within delta + margin of the start of each solve and is rebuilt when a pair outside it
+// comes near.  Pieces are the connected parts of the surface: a piece never contacts itself (no
+// self-contact). Options (prefix -contact_): surface NAME (default "interface"), offset [m]
+// (required), penalty k [Pa/m], ramp s [m] (default offset / 4), pattern_margin [m] (default
+// offset). Rigid walls (contact_wall.hpp): -contact_walls GROUPS (fluid boundary groups, default
+// none), wall_offset [m] (default offset), wall_exclude [m] (default 2 wall_offset): the same
+// pressure law against the nearest wall triangle, on the surface node alone (the wall does not
+// move). Axis rod: -contact_axis_radius R [m] (default 0: none), -contact_axis X,Y,Z,EX,EY,EZ (a
+// point and the direction; default the z axis): every surface node keeps R from the line, with the
 // same pressure law on its whole lumped area.  Three leaflets closing meet at one point on the
 // axis, where the fluid between their corners is squeezed from three sides; the rod keeps that
 // column of fluid at radius R (it is the valve's minimum gap at its centre) and the gap seal
@@ -92,6 +94,7 @@ private:
   // coordinates count).
   template <class F> void for_each_active(F &&f);
   void pick_wall_triangles(); // wall_pick_ from the surface's current position
+  void pick_pairs();          // picked_: each node's nearest triangle per piece, once per solve
   static unsigned long long key(int a, int b) {
     if (a > b) std::swap(a, b);
     return ((unsigned long long)a << 32) | (unsigned)b;
@@ -109,6 +112,8 @@ private:
     TriRegion region = TriRegion::face;
   };
   std::vector<WallPick> wall_pick_;
+  std::vector<Pair> picked_;
+  bool picked_valid_ = false;
   double wall_min_gap_ = 0, axis_min_distance_ = 0;
   std::unordered_set<unsigned long long> pattern_, pending_;
   bool changed_ = false;
