@@ -115,11 +115,9 @@ for r in mon:
 print("\n| cycle | from [ms] | to [ms] | forward [mL] | backward [mL] | backward / forward |")
 print("|---|---|---|---|---|---|")
 cycles = {}
-prev_t = 0.0
-for r in mon:
+for r in mon:  # flow at the step's end x its step (a piece resumed mid-cycle starts right)
     c = int(r["time"] / period - 1e-12)
-    q = -r["inlet_flux"] * (r["time"] - prev_t)
-    prev_t = r["time"]
+    q = -r["inlet_flux"] * r["dt"]
     f, b, t0, t1 = cycles.get(c, (0.0, 0.0, r["time"], r["time"]))
     cycles[c] = (f + max(q, 0), b + max(-q, 0), min(t0, r["time"]), r["time"])
 for c, (f, b, t0, t1) in sorted(cycles.items()):
@@ -130,13 +128,13 @@ def is_closed(r):
     return all(sign * (r[col] - value) > 0 for col, sign, value in closed_terms)
 
 
-def regurgitation(rows, t_start):
+def regurgitation(rows):
     """For one cycle's rows (flow to the aorta q = -inlet_flux, volumes by q x the row's step as in
     the table above): the ejected volume (flow forward while the valve is not closed), closure
     time (None if not closed), closing volume (flow back between the peak forward flow and the
     closure), leakage after the closure and leakage before the opening (net flow back over the
     rows before the peak where the valve counts as closed: the tail of the previous diastole)."""
-    steps = np.diff([t_start] + [r["time"] for r in rows])
+    steps = np.array([r["dt"] for r in rows])
     q = np.array([-r["inlet_flux"] for r in rows])
     vol = q * steps
     peak = int(np.argmax(q))
@@ -156,8 +154,7 @@ print(f"\n| cycle | closed at [ms] (--closed {closed_text}) | ejected [mL] | clo
 print("|---|---|---|---|---|---|---|---|")
 for c in sorted(cycles):
     rows = [r for r in mon if int(r["time"] / period - 1e-12) == c]
-    t_start = max([r["time"] for r in mon if r["time"] < rows[0]["time"]], default=0.0)
-    f, tc, closing, after, before = regurgitation(rows, t_start)
+    f, tc, closing, after, before = regurgitation(rows)
     shut = f"{tc*1e3:.1f}" if tc is not None else f"not by {rows[-1]['time']*1e3:.1f}"
     reg = closing + after + before
     print(f"| {c + 1} | {shut} | {f*1e6:.2f} | {closing*1e6:.3f} | {after*1e6:.3f} | {before*1e6:.3f} | {reg*1e6:.3f} | "
