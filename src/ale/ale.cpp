@@ -111,11 +111,14 @@ void Ale::check(const char *when, long step) {
     // A new mesh of this boundary is no better than its worst cell: a degraded cell that is not
     // worse than that would only buy another mesh with the same worst cell (and a remesh's
     // interpolation and projection, which take 1-4 % of the kinetic energy each time).
-    double worst = 0, global = 0;
-    for (double s : skewness0_)
-      worst = std::max(worst, s);
-    MPI_Allreduce(&worst, &global, 1, MPI_DOUBLE, MPI_MAX, PetscObjectComm((PetscObject)space_.dm));
-    if (fresh_cap_ > 0) trigger_ = std::max(remesh_skewness_, std::min(fresh_cap_, global));
+    if (fresh_cap_ > 0) {
+      double worst = 0, global = 0;
+      for (double s : skewness0_)
+        worst = std::max(worst, s);
+      MPI_Allreduce(&worst, &global, 1, MPI_DOUBLE, MPI_MAX,
+                    PetscObjectComm((PetscObject)space_.dm));
+      trigger_ = std::max(remesh_skewness_, std::min(fresh_cap_, global));
+    }
   }
   std::vector<char> sealed;
   if (remeshing() && ignore_sealed_ && sealed_) sealed_(sealed);

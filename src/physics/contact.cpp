@@ -192,7 +192,7 @@ void ContactModule::begin_solve(const StepContext &ctx) {
   // each new pattern is a new matrix and a new factorisation (the opening valve rebuilt it 9
   // times in 6 steps, as nodes slid from one nearest triangle to the next).
   int grew = 0, any;
-  for (const Pair &pr : pairs_within(p_.offset + p_.margin))
+  for (const Pair &pr : picked_) // the pairs within offset + margin, just picked
     for (int k : surface_->triangle(pr.tri))
       grew = grew || !pattern_.count(key(pr.node, k));
   MPI_Allreduce(&grew, &any, 1, MPI_INT, MPI_MAX, surface_->comm());

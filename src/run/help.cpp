@@ -172,7 +172,7 @@ const std::vector<Section> &sections() {
         {"ale_remesh_skewness", "0.9", "-",
          "remesh the fluid when a degraded cell's skewness passes this (0: off)"},
         {"ale_remesh_skewness_fresh", "0", "-",
-         "raise that trigger to the reference mesh's worst cell, up to this (0: off)"},
+         "raise -ale_remesh_skewness to the current mesh's worst cell, up to this (0: off)"},
         {"ale_remesh_min_volume_ratio", "0.1", "-",
          "remesh when a fluid cell is squeezed below this fraction of its volume"},
         {"ale_remesh_ignore_sealed", "false", "-",
