@@ -11,9 +11,11 @@ starts, the earlier one's rows stop.  Prints (markdown)
     own test: the first row after the cycle's peak forward flow where COND holds; COND is
     COLUMN>VALUE or COLUMN<VALUE joined by &, on monitor.csv's columns): the closing volume (flow
     back before that instant) against the ejected volume (flow forward while the valve is not
-    closed), and the leakage volume (the net flow back from it to the cycle's
-    end, so that a closed valve's ringing back and forth counts only by its net, plus the net
-    flow back while closed before the cycle's opening: the previous diastole's tail);
+    closed), and the leakage volume (the net flow back from it until the valve reopens (the
+    cycle's end, or the first of the open rows that end the cycle, whose forward flow is the next
+    ejection started early and counts as ejected), so that a closed valve's ringing back and
+    forth counts only by its net, plus the net flow back while closed before the cycle's
+    opening: the previous diastole's tail);
   - with --hold MS (a closed valve under a held load, from MS to the end): the leak, i.e. the mean
     flow back through the valve over whole periods of the leaflets' ringing (from the first to the
     last upward crossing of the mean), the same leak from a fit of a decaying oscillation about
@@ -132,21 +134,29 @@ def regurgitation(rows):
     """For one cycle's rows (flow to the aorta q = -inlet_flux, volumes by q x the row's step as in
     the table above): the ejected volume (flow forward while the valve is not closed), closure
     time (None if not closed), closing volume (flow back between the peak forward flow and the
-    closure), leakage after the closure and leakage before the opening (net flow back over the
-    rows before the peak where the valve counts as closed: the tail of the previous diastole)."""
+    closure), leakage after the closure (net flow back from the closure until the valve reopens:
+    the rows after the last closed one, where a valve that opens before the cycle's end starts
+    its next ejection, count as ejection, and any flow back there as leakage) and leakage before
+    the opening (net flow back over the rows before the peak where the valve counts as closed:
+    the tail of the previous diastole)."""
     steps = np.array([r["dt"] for r in rows])
     q = np.array([-r["inlet_flux"] for r in rows])
     vol = q * steps
     peak = int(np.argmax(q))
     tc = next((i for i in range(peak + 1, len(rows)) if is_closed(rows[i])), None)
     end = tc if tc is not None else len(rows)
+    reopen = len(rows)  # the open rows after the last closed one: the next ejection, started early
+    if tc is not None:
+        while reopen - 1 > tc and not is_closed(rows[reopen - 1]):
+            reopen -= 1
     shut_before = [i for i in range(peak) if is_closed(rows[i])]
     open_rows = np.setdiff1d(np.arange(end), shut_before)
-    ejected = float(np.sum(np.maximum(vol[open_rows], 0)))
+    ejected = float(np.sum(np.maximum(vol[open_rows], 0)) + np.sum(np.maximum(vol[reopen:], 0)))
     closing = float(np.sum(np.maximum(-vol[peak + 1:end], 0)))
-    after = float(-np.sum(vol[end:])) + 0.0  # + 0.0: no "-0.000" for an empty sum
+    after = float(-np.sum(vol[end:reopen]) + np.sum(np.maximum(-vol[reopen:], 0))) + 0.0  # no "-0.000"
     before = float(-np.sum(vol[shut_before])) + 0.0
-    return ejected, rows[tc]["time"] if tc is not None else None, closing, after, before
+    reopened = rows[reopen]["time"] if reopen < len(rows) else None
+    return ejected, rows[tc]["time"] if tc is not None else None, closing, after, before, reopened
 
 
 print(f"\n| cycle | closed at [ms] (--closed {closed_text}) | ejected [mL] | closing [mL] | leakage after "
@@ -154,8 +164,10 @@ print(f"\n| cycle | closed at [ms] (--closed {closed_text}) | ejected [mL] | clo
 print("|---|---|---|---|---|---|---|---|")
 for c in sorted(cycles):
     rows = [r for r in mon if int(r["time"] / period - 1e-12) == c]
-    f, tc, closing, after, before = regurgitation(rows)
+    f, tc, closing, after, before, reopened = regurgitation(rows)
     shut = f"{tc*1e3:.1f}" if tc is not None else f"not by {rows[-1]['time']*1e3:.1f}"
+    if reopened is not None:
+        shut += f", open again at {reopened*1e3:.1f}"
     reg = closing + after + before
     print(f"| {c + 1} | {shut} | {f*1e6:.2f} | {closing*1e6:.3f} | {after*1e6:.3f} | {before*1e6:.3f} | {reg*1e6:.3f} | "
           f"{reg/f*100 if f else 0:.2f} % |")

@@ -3,7 +3,8 @@ two cycles of 1.1 s, each a half-sine ejection (peak 20 L/min over 0.3 s; the ej
 valve's forward swings), a closing backflow of
 5 L/min for 30 ms, then a closed valve (contact_pairs 200) leaking 0.5 L/min under a ringing of
 +-2 L/min over whole periods (it must count only by its net); the second cycle starts closed and
-leaks until its opening at 50 ms.  Also: a condition on a missing column and a malformed one
+leaks until its opening at 50 ms, and opens again 28 ms before its end (5 L/min forward: the
+next ejection started early, ejected volume, not a negative leak).  Also: a condition on a missing column and a malformed one
 exit non-zero naming --closed."""
 import math
 import os
@@ -14,6 +15,7 @@ import tempfile
 from fsitest import SRC, check, finish
 
 DT, T = 5e-4, 1.1
+REOPEN = 0.33 + 53 * 0.014  # s into the second cycle: after 53 whole periods of the ringing
 LPM = 1 / 6e4  # m^3/s per L/min
 
 
@@ -35,6 +37,8 @@ def write_run(d):
             q, pairs = flow(s)
             if k > n and k - n <= 100:  # the second cycle starts closed for 50 ms
                 q, pairs = -0.5, 200
+            if k - n > REOPEN / DT + 1e-9:  # and opens again before its end
+                q, pairs = 5.0, 0
             f.write(f"{k},{t:.10f},3,10,1.0,{DT},{-q * LPM:.12e},{pairs}\n")
 
 
@@ -48,27 +52,35 @@ with tempfile.TemporaryDirectory() as d:
     write_run(d)
     code, out = report(d, "--every", "1000")
     check(code == 0, f"valve_report on the synthetic run: rc {code}" + ("" if code == 0 else "\n" + out))
-    rows = re.findall(r"^\| (\d) \| ([0-9.]+) \| ([0-9.]+) \| ([0-9.-]+) \| ([0-9.-]+) \| ([0-9.-]+) "
+    rows = re.findall(r"^\| (\d) \| ([0-9.]+)(?:, open again at ([0-9.]+))? \| ([0-9.]+) \| ([0-9.-]+) \| ([0-9.-]+) \| ([0-9.-]+) "
                       r"\| ([0-9.-]+) \| ([0-9.]+) % \|$", out, re.M)
     check(len(rows) == 2, f"the split table has {len(rows)} cycle rows (2 expected)" +
           ("" if len(rows) == 2 else ":\n" + out))
     ml = 1e6 * LPM  # mL per (L/min x s)
     forward = 20 * 0.6 / math.pi * ml
     closing = 5 * 0.03 * ml
-    after = 0.5 * (T - 0.33) * ml
+    after = [0.5 * (T - 0.33) * ml, 0.5 * (REOPEN - 0.33) * ml]
+    early = 5 * (T - REOPEN) * ml  # the second cycle's next ejection, started early
     before = [0.0, 0.5 * 0.05 * ml]
     for c, r in enumerate(rows):
-        closed_at, f, cl, la, lb, reg, frac = (float(x) for x in r[1:])
+        closed_at, f, cl, la, lb, reg, frac = (float(x) for x in r[1:2] + r[3:])
+        reopened = float(r[2]) if r[2] else None
+        want_reopen = None if c == 0 else 1000 * (T + REOPEN + DT)
+        check((reopened is None) == (want_reopen is None) and
+              (reopened is None or abs(reopened - want_reopen) < 0.06),
+              f"cycle {c + 1}: open again at {reopened} ms, expected {want_reopen}")
         check(abs(closed_at - (1000 * (c * T + 0.33 + DT))) < 0.06,
               f"cycle {c + 1}: closed at {closed_at} ms, expected {1000 * (c * T + 0.33 + DT):.1f}")
         # The second cycle's ejection starts 50 ms late: its half-sine loses that part.  The report
         # sums flow x step over the rows (right end points): within 0.05 mL of the integral here.
         f_exp = forward if c == 0 else 20 * (0.3 / math.pi) * (1 + math.cos(math.pi * 0.05 / 0.3)) * ml
         f_rows = sum(flow(k * DT)[0] for k in range(1 if c == 0 else 101, 601)) * DT * ml
+        if c == 1:
+            f_exp, f_rows = f_exp + early, f_rows + early
         for name, got, want, tol in (("ejected", f, f_rows, 0.006), ("ejected (integral)", f, f_exp, 0.05), ("closing", cl, closing, 0.001),
-                                     ("leakage after closure", la, after, 0.001),
+                                     ("leakage after closure", la, after[c], 0.001),
                                      ("leakage before opening", lb, before[c], 0.001),
-                                     ("regurgitant", reg, closing + after + before[c], 0.002)):
+                                     ("regurgitant", reg, closing + after[c] + before[c], 0.002)):
             check(abs(got - want) <= tol, f"cycle {c + 1}: {name} {got} mL, expected {want:.4f}")
         check(abs(frac - 100 * reg / f) < 0.01, f"cycle {c + 1}: fraction {frac} % of {reg}/{f}")
     for bad, word in (("seal_cells>3", "no monitor column 'seal_cells'"),
