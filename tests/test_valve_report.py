@@ -4,8 +4,8 @@ valve's forward swings), a closing backflow of
 5 L/min for 30 ms, then a closed valve (contact_pairs 200) leaking 0.5 L/min under a ringing of
 +-2 L/min over whole periods (it must count only by its net); the second cycle starts closed and
 leaks until its opening at 50 ms, and opens again 28 ms before its end (5 L/min forward: the
-next ejection started early, ejected volume, not a negative leak).  Also: a condition on a missing column and a malformed one
-exit non-zero naming --closed."""
+next ejection started early, ejected volume, not a negative leak).  Also: a condition on a
+missing column and a malformed one exit non-zero naming --closed."""
 import math
 import os
 import re
