@@ -1,6 +1,5 @@
 // fsi_app: blood flow and deformable tissue, monolithic ALE finite elements on DMPlex.
-//   mpirun -n 2 fsi_app -options_file examples/<scene>/<scene>.opts [-options_file
-//   petsc_options/X.opts]
+//   mpirun -n 2 fsi_app -options_file examples/<scene>/<scene>.opts [-solver_preset X]
 // The scene (a PETSc options file) switches physics on; what it does not ask for is not built.
 // The algorithm: scene -> mesh -> Simulation(mesh, state) -> loop { step | rebuild } -> report.
 #include "fsi/run/help.hpp"
@@ -8,6 +7,7 @@
 #include "fsi/run/run_report.hpp"
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
+#include "fsi/scene/petsc_input.hpp"
 #include "fsi/solver/pcd.hpp"
 #include "fsi/solver/schur_bilu.hpp"
 
@@ -24,12 +24,11 @@ int run(MPI_Comm comm) {
   const Scene scene = Scene::from_options();
   Output out(comm, opt::string("out_dir", "results/" + scene.name));
   const std::string restart = opt::string("restart", "");
-  const long checkpoint_every = opt::integer("checkpoint_every", 0);
-  const long rebuild_every = opt::integer("sim_rebuild_every", 0);
-  if (checkpoint_every < 0 || rebuild_every < 0)
-    throw InputError("options -checkpoint_every and -sim_rebuild_every must be >= 0");
+  const long checkpoint_every = opt::integer_at_least("checkpoint_every", 0, 0);
+  const long rebuild_every = opt::integer_at_least("sim_rebuild_every", 0, 0);
   OutputNames names{out.dir(), restart.empty() ? "fields" : "fields_restart",
-                    restart.empty() ? "hemo" : "hemo_restart", opt::integer("out_fields_every", 0)};
+                    restart.empty() ? "hemo" : "hemo_restart",
+                    opt::integer_at_least("out_fields_every", 0, 0)};
   std::unique_ptr<RunState> resume;
   if (!restart.empty()) {
     try {
@@ -61,9 +60,8 @@ int run(MPI_Comm comm) {
   } else {
     load_mesh(comm, *mesh);
   }
-  const long remesh_every = opt::integer("ale_remesh_every", 0);
+  const long remesh_every = opt::integer_at_least("ale_remesh_every", 0, 0);
   const RemeshOptions remesh_options = RemeshOptions::from_options();
-  if (remesh_every < 0) throw InputError("option -ale_remesh_every must be >= 0");
   auto sim = std::make_unique<Simulation>(*mesh, scene, names, resume.get());
   std::vector<std::string> field_parts{names.fields}; // one per mesh the run was on
   StepControl control = StepControl::from_options(scene.time.dt);
@@ -96,7 +94,7 @@ int run(MPI_Comm comm) {
   // Time loop to the scene's end time; a failed step is retried with a smaller dt.
   RunOutcome outcome;
   const std::string checkpoint_path = out.dir() + "/checkpoint.h5";
-  long checkpoints = 0, crash_test = opt::integer("checkpoint_crash_test", 0);
+  long checkpoints = 0, crash_test = opt::integer_at_least("checkpoint_crash_test", 0, 0);
   auto state = [&]() {
     RunState s = sim->capture();
     s.dt = control.dt;
@@ -216,12 +214,25 @@ int run(MPI_Comm comm) {
 } // namespace
 
 int main(int argc, char **argv) {
+  // A missing options file: one line before PETSc would print its trace (MPI first, so that
+  // only rank 0 says it).
+  MPI_Init(&argc, &argv);
+  const std::string missing = check_options_files(argc, argv);
+  if (!missing.empty()) {
+    int rank;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) fprintf(stderr, "fsi_app: error: %s\n", missing.c_str());
+    MPI_Finalize();
+    return 2;
+  }
   PetscCall(PetscInitialize(&argc, &argv, nullptr, nullptr));
   fsi::register_pcd_preconditioner();
   fsi::register_schur_bilu_preconditioner();
   int code = 0;
   MPI_Comm comm = PETSC_COMM_WORLD;
   try {
+    install_petsc_error_handler();
+    apply_solver_preset();
     code = wants_help() ? print_help(comm) : run(comm);
   } catch (InputError &e) {
     PetscPrintf(comm, "fsi_app: error: %s\n", e.what());
@@ -234,5 +245,6 @@ int main(int argc, char **argv) {
     code = 4;
   }
   PetscFinalize();
+  MPI_Finalize();
   return code;
 }

@@ -31,6 +31,11 @@ cases = [
     ("wall shear on a missing surface", ["-hemo_surfaces", "aorta"], "aorta"),
     ("negative checkpoint interval", ["-checkpoint_every", "-1"], "checkpoint_every"),
     ("missing restart file", ["-restart", "/nonexistent/checkpoint.h5"], "/nonexistent/checkpoint.h5"),
+    ("negative field interval", ["-out_fields_every", "-1"], "out_fields_every"),
+    ("negative easy-Newton count", ["-step_easy_newton", "-1"], "step_easy_newton"),
+    ("misspelt PETSc type", ["-ksp_type", "nosuchksp"], "-ksp_type"),
+    ("unknown solver preset", ["-solver_preset", "nosuchpreset"], "-solver_preset"),
+    ("missing options file", ["-options_file", "/nonexistent/scene.opts"], "/nonexistent/scene.opts"),
     ("corrupt restart file", ["-restart", garbage], "not an HDF5 file"),
 ]
 solid_cases = [

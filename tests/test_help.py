@@ -1,6 +1,7 @@
 """fsi_app -help (issue 13): exits 0 without a scene and documents every option the sources read
 (each with a default and a unit), whether the scene switches its physics on or not, and every
-registered boundary-condition type; a failing PETSc call reports PETSc's own message."""
+registered boundary-condition type; no entry that nothing reads, literal defaults as the readers'
+are; a misspelt PETSc type is one line naming the option."""
 import os
 import re
 import subprocess
@@ -23,7 +24,7 @@ read = set()
 for root, _, files in os.walk(os.path.join(SRC, "src")):
     for f in files:
         text = open(os.path.join(root, f)).read()
-        read |= set(re.findall(r'opt::[a-z_]+\("([a-z_0-9]+)"', text))
+        read |= set(re.findall(r'(?:opt::[a-z_]+|from_option)\("([A-Za-z_0-9]+)"', text))
         read |= {"bc_<b>_" + n for n in re.findall(r'opt::[a-z_]+\((?:pre_?|prefix) \+ "([a-z_0-9]+)"', text)}
         read |= set(re.findall(r'parse_points\("([a-z_0-9]+)"', text))
 # Solver options the app inspects to configure its preconditioners belong to PETSc.
@@ -31,17 +32,55 @@ petsc = {"pc_type", "pc_fieldsplit_schur_precondition"}
 missing = sorted(n for n in read - petsc if n not in documented)
 print(f"{len(read)} option names read by the sources; undocumented: {missing}")
 check(not missing, "every option the sources read is in -help")
+# ... and every entry of -help is read by some source (no entry left behind by a removed option);
+# patterns (snes_*, bc_<b>_*) and PETSc's own names are not option names of ours.
+ours = {n for n in documented if "*" not in n and "<" not in n and not n.startswith(("snes_", "ksp_", "pc_", "mat_"))}
+bc = {n[len("bc_<b>_"):] for n in read if n.startswith("bc_<b>_")}
+stale = sorted(n for n in ours if n not in read and not (n.startswith("bc_<b>_") and n[7:] in bc))
+print(f"help entries nothing reads: {stale}")
+check(not stale, "every -help entry is read by the sources")
+
+# Defaults: where a reader's default is a literal, -help states the same value.
+def number(t):
+    try:
+        return float(t)
+    except ValueError:
+        return None
+literal = {}
+for root, _, files in os.walk(os.path.join(SRC, "src")):
+    for f in files:
+        text = open(os.path.join(root, f)).read()
+        for name, d in re.findall(r'opt::(?:real|positive|nonnegative|integer|integer_at_least|flag|string|choice)\("([A-Za-z_0-9]+)",\s*([^,)]+)', text):
+            literal.setdefault(name, set()).add(d.strip())
+wrong = []
+for name, ds in sorted(literal.items()):
+    if name not in documented or len(ds) != 1:
+        continue  # read with several defaults (per mode): -help says which
+    d = ds.pop()
+    shown = documented[name][0].split(" ")[0].strip()
+    if shown == "" or shown.startswith("(") or not re.fullmatch(r'"[^"]*"|[-+.\w]+', d):
+        continue  # no default (required, or only read when given), or one computed
+    if d.startswith('"'):
+        ok = d.strip('"') == shown
+    elif d in ("true", "false"):
+        ok = d == shown
+    elif number(d) is not None:
+        ok = number(shown) is not None and abs(number(shown) - number(d)) <= 1e-12 * abs(number(d))
+    else:
+        continue  # computed from other values
+    if not ok:
+        wrong.append(f"-{name}: reader {d}, help {shown!r}")
+print("defaults that differ:", wrong)
+check(not wrong, "every literal default in -help equals its reader's")
 for t in ("noslip", "velocity", "flow_rate", "pressure", "traction_exact", "clamped", "displacement",
           "traction", "follower_pressure"):
     check(re.search(rf"^  {t}\s+\((fluid|solid)\)", p.stdout, re.M) is not None,
           f"boundary type '{t}' listed")
 
-# A PETSc error keeps PETSc's words (here: an unknown solver type, caught at solver setup).
+# A misspelt PETSc type is bad input: one line naming the option, PETSc's words, exit 2.
 r = run(scene("ethier_steinman"), extra=["-mesh_h", "1", "-snes_type", "no_such_snes"])
-last = r.out.strip().splitlines()
-# (PETSc's "[0]PETSC ERROR: " on stderr may land in front of our stdout line: look inside lines)
-msg = [l[l.index("fsi_app: failure:"):] for l in last if "fsi_app: failure:" in l]
+msg = [l for l in r.out.splitlines() if "fsi_app: error:" in l]
 print(msg)
-check(r.code != 0 and msg and "no_such_snes" in msg[0],
-      "a failing PETSc call reports PETSc's message, naming the bad value")
+check(r.code == 2 and len(msg) == 1 and "-snes_type" in msg[0] and "no_such_snes" in msg[0]
+      and "PETSC ERROR" not in r.out, "an unknown PETSc type: exit 2, one line naming the option")
 finish()

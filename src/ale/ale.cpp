@@ -10,8 +10,7 @@ namespace fsi {
 Ale::Ale(const Space &space, std::unique_ptr<MeshMotion> motion,
          const std::vector<PetscInt> *fluid_cells)
     : space_(space), motion_(std::move(motion)), fluid_cells_(fluid_cells) {
-  geometry_iterations_ = (int)opt::integer("ale_geometry_iterations", 0);
-  if (geometry_iterations_ < 0) throw InputError("option -ale_geometry_iterations must be >= 0");
+  geometry_iterations_ = (int)opt::integer_at_least("ale_geometry_iterations", 0, 0);
   geometry_rtol_ = opt::positive("ale_geometry_rtol", 1e-6);
   min_jacobian_ = opt::real("ale_min_jacobian", 0.0);
   max_skewness_ = opt::positive("ale_max_skewness", 0.99);

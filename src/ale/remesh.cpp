@@ -209,8 +209,8 @@ using namespace remeshing;
 RemeshOptions RemeshOptions::from_options() {
   RemeshOptions o;
   o.hmax = opt::nonnegative("ale_remesh_hmax", 0.0);
-  o.verbose = opt::integer("ale_remesh_verbose", 0) != 0;
-  o.test_fault = (int)opt::integer("ale_remesh_test_fault", 0);
+  o.verbose = opt::integer_at_least("ale_remesh_verbose", 0, 0) != 0;
+  o.test_fault = (int)opt::integer_at_least("ale_remesh_test_fault", 0, 0);
   o.gap_cells = opt::nonnegative("ale_remesh_gap_cells", 2.0);
   o.flip_skewness = opt::nonnegative("ale_remesh_flip_skewness", 0.8);
   o.project = opt::flag("ale_remesh_project", true);

@@ -30,8 +30,7 @@ void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const So
     e1_[d] /= std::sqrt(n);
   e2_ = {axis_[1] * e1_[2] - axis_[2] * e1_[1], axis_[2] * e1_[0] - axis_[0] * e1_[2],
          axis_[0] * e1_[1] - axis_[1] * e1_[0]};
-  pixels_ = (int)opt::integer("valve_goa_pixels", 400);
-  if (pixels_ < 10) throw InputError("option -valve_goa_pixels must be at least 10");
+  pixels_ = (int)opt::integer_at_least("valve_goa_pixels", 400, 10);
 
   auto planes = opt::reals("valve_dp_planes");
   if (planes.size() != 2 || !(planes[0] < 0 && planes[1] > 0))

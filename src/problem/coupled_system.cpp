@@ -29,14 +29,9 @@ static PetscErrorCode jacobian_cb(SNES, Vec U, Mat J, Mat, void *ctx) {
 
 CoupledSystem::CoupledSystem(const Space &space) : space_(space) {
   inexact_gamma_ = opt::nonnegative("newton_inexact_gamma", 0.0);
-  pattern_every_ = opt::integer("sim_pattern_rebuild_every", 0);
-  pc_rebuild_krylov_ = opt::integer("newton_pc_rebuild_krylov", 0);
-  fault_residual_ = opt::integer("test_fault_residual", 0);
-  if (fault_residual_ < 0)
-    throw InputError("option -test_fault_residual must be >= 0 (0: off; N: the N-th residual "
-                     "evaluation meets an inverted element on rank 0)");
-  if (pc_rebuild_krylov_ < 0) throw InputError("option -newton_pc_rebuild_krylov must be >= 0");
-  if (pattern_every_ < 0) throw InputError("option -sim_pattern_rebuild_every must be >= 0");
+  pattern_every_ = opt::integer_at_least("sim_pattern_rebuild_every", 0, 0);
+  pc_rebuild_krylov_ = opt::integer_at_least("newton_pc_rebuild_krylov", 0, 0);
+  fault_residual_ = opt::integer_at_least("test_fault_residual", 0, 0); // 0: off
   F_ = space.create_global();
   Uloc_ = space.create_local();
   FSI_CALL(VecDuplicate(Uloc_, &Floc_));

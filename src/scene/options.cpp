@@ -1,4 +1,5 @@
 #include "fsi/scene/options.hpp"
+#include "fsi/scene/petsc_input.hpp"
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -29,6 +30,9 @@ void throw_petsc(PetscErrorCode ierr, const char *file, int line) {
   const char *text = nullptr;
   char *specific = nullptr;
   PetscErrorMessage(ierr, &text, &specific);
+  // A misspelt type (-ksp_type nosuchksp) is the user's input: one line naming the option.
+  if (ierr == PETSC_ERR_ARG_UNKNOWN_TYPE && specific && *specific)
+    throw InputError(petsc_unknown_type(specific));
   std::string msg = "PETSc error " + std::to_string(ierr);
   if (text) msg += std::string(" (") + text + ")";
   if (specific && *specific) msg += std::string(": ") + specific;
@@ -130,6 +134,14 @@ long integer(const std::string &name, long def) {
   if (s.empty() || *end != '\0')
     throw InputError("option -" + name + " expects an integer, got '" + s + "'");
   if (errno == ERANGE) throw InputError("option -" + name + " is out of range: '" + s + "'");
+  return v;
+}
+
+long integer_at_least(const std::string &name, long def, long min) {
+  const long v = integer(name, def);
+  if (v < min)
+    throw InputError("option -" + name + " must be >= " + std::to_string(min) + ", got " +
+                     std::to_string(v));
   return v;
 }
 

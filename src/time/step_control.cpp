@@ -23,9 +23,8 @@ StepControl StepControl::from_options(double nominal_dt) {
   c.dt_min = opt::positive("ts_adapt_dt_min", nominal_dt / 1000);
   if (c.dt_min > nominal_dt)
     throw InputError("option -ts_adapt_dt_min is larger than the time step -ts_dt");
-  c.grow_after = opt::integer("step_grow_after", 3);
-  c.easy_newton = opt::integer("step_easy_newton", 4);
-  if (c.grow_after < 1) throw InputError("option -step_grow_after must be >= 1");
+  c.grow_after = opt::integer_at_least("step_grow_after", 3, 1);
+  c.easy_newton = opt::integer_at_least("step_easy_newton", 4, 1);
   // -ts_adapt_switch_when: cut mode, error control while a monitor condition holds.
   const bool switch_given = opt::has("ts_adapt_switch_when");
   c.switchable = c.mode == cut_only && switch_given;
@@ -40,8 +39,7 @@ StepControl StepControl::from_options(double nominal_dt) {
     if (c.dt_max < nominal_dt)
       throw InputError("option -ts_adapt_dt_max is smaller than the time step -ts_dt");
     c.safety = opt::positive("ts_adapt_safety", 0.9);
-    c.max_rejections = opt::integer("ts_adapt_max_rejections", 5);
-    if (c.max_rejections < 0) throw InputError("option -ts_adapt_max_rejections must be >= 0");
+    c.max_rejections = opt::integer_at_least("ts_adapt_max_rejections", 5, 0);
     if (c.safety > 1) throw InputError("option -ts_adapt_safety must be in (0, 1], e.g. 0.9");
     c.period = opt::nonnegative("ts_adapt_period", 0.0);
     if (c.period > 0 && c.period < c.dt_max)

@@ -14,6 +14,7 @@ double positive(const std::string &name, double def);    // > 0
 double nonnegative(const std::string &name, double def); // >= 0
 double required_positive(const std::string &name);
 long integer(const std::string &name, long def);
+long integer_at_least(const std::string &name, long def, long min); // >= min
 bool flag(const std::string &name, bool def);
 std::string string(const std::string &name, const std::string &def);
 std::string required_string(const std::string &name);
