@@ -1,10 +1,10 @@
 #!/usr/bin/python3
 """docs/scaling_model.md's table: seconds per step of the paper-size and the 10x valve meshes on
-P ranks, from per-rank costs measured on the 2-core machine (inputs below, docs/speed.md) and the
+P ranks, from per-rank costs measured on the 2-core machine (inputs below, docs/performance.md) and the
 stated assumptions.  A model, not a measurement.  Run: /usr/bin/python3 scripts/scaling_model.py"""
 import math
 
-# Measured (2 ranks, paper-size tube, schur_bilu_fast, 2026-12-04; docs/speed.md)
+# Measured (2 ranks, paper-size tube, schur_bilu_fast; docs/performance.md)
 R_JAC = 145e3        # Jacobian, P2 tets/s per rank
 R_RES = 726e3        # residual, tets/s per rank
 JAC_PER_STEP = 1.0   # -snes_lag_jacobian 2: one per step

@@ -90,7 +90,7 @@ void split_stress(const SplitState &s, const double F[9], double c01, double kap
 // d2I2 = 4 F_iJ F_kL + 2 I1 d_ik d_JL - 2 d_ik C_LJ - 2 F_iL F_kJ - 2 (F F^T)_ik d_JL,
 // d2J = (cof_iJ cof_kL - cof_iL cof_kJ) / J.  It replaced a dual-number pass through P (9
 // derivatives carried through every operation): the Mooney-Rivlin Jacobian 1.4x faster
-// (docs/speed.md); checked against finite differences of P in test_materials.
+// (docs/performance.md); checked against finite differences of P in test_materials.
 void split_tangent(const SplitState &s, const double F[9], double c01, double kappa, Exponential ex,
                    double A[81]) {
   const double *cof = s.cof, *C = s.C, I1 = s.I1, Ji = s.Jinv, a = s.a, g = s.g;

@@ -20,7 +20,7 @@ double peak_memory_mb() {
 // Hands the heap's free pages back to the system.  After a whole run's data is freed (a remesh)
 // glibc keeps most freed pages mapped and the heap fragments: without this the valve's peak
 // memory grew ~100 MB per remesh (846 -> 1628 MB per rank in 7 remeshes; 850 -> 930 with it,
-// at ~1 s per remesh for refaulting the pages; docs/speed.md).
+// at ~1 s per remesh for refaulting the pages; docs/performance.md).
 void release_free_heap() {
   malloc_trim(0);
 }
