@@ -411,65 +411,61 @@ StepStats Simulation::step(const StepErrorTolerance *tol) {
   return s;
 }
 
-std::vector<std::string> Simulation::monitor_columns() const {
-  auto columns = mon_.columns(), solid_columns = smon_.columns(), wss_columns = wss_.columns();
-  columns.insert(columns.end(), solid_columns.begin(), solid_columns.end());
-  const auto valve_columns = valve_.columns();
-  columns.insert(columns.end(), valve_columns.begin(), valve_columns.end());
-  columns.insert(columns.end(), wss_columns.begin(), wss_columns.end());
-  const auto bc_columns = bcs_->monitor_columns();
-  columns.insert(columns.end(), bc_columns.begin(), bc_columns.end());
-  if (contact_)
-    for (auto c : {"contact_pairs", "contact_max_penetration", "contact_force"})
-      columns.push_back(c);
-  if (contact_ && !contact_->params().walls.empty())
-    for (auto c : {"contact_wall_pairs", "contact_wall_min_gap"})
-      columns.push_back(c);
-  if (contact_ && contact_->params().axis.on())
-    for (auto c : {"contact_axis_pairs", "contact_axis_min_distance"})
-      columns.push_back(c);
-  if (seal_)
-    for (auto c : {"seal_cells", "seal_max_alpha"})
-      columns.push_back(c);
-  if (ale_->moving())
-    for (auto c :
-         {"mesh_min_jacobian", "mesh_max_skewness", "mesh_min_jacobian_x", "mesh_min_jacobian_y",
-          "mesh_min_jacobian_z", "geometry_iterations", "geometry_change"})
-      columns.push_back(c);
+// Every monitor value of a step under its column's name; with `s` null, the names only (the
+// columns, before any step).  Sources add in this order: monitor.csv's column order.
+void Simulation::monitor_row(MonitorRow &row, const StepStats *s) {
+  row.add(mon_.columns(), [&] { return mon_.evaluate(*this); });
+  row.add(smon_.columns(), [&] { return smon_.evaluate(*this); });
+  row.add(valve_.columns(), [&] { return valve_.evaluate(*this); });
+  row.add(wss_.columns(), [&] { return wss_.values(); });
+  row.add(bcs_->monitor_columns(), [&] { return bcs_->monitor_values(); });
+  if (contact_) {
+    const auto &c = contact_->stats();
+    row.add("contact_pairs", (double)c.active_pairs);
+    row.add("contact_max_penetration", c.max_penetration);
+    row.add("contact_force", c.force);
+    if (!contact_->params().walls.empty()) {
+      row.add("contact_wall_pairs", (double)c.wall_pairs);
+      row.add("contact_wall_min_gap", c.wall_min_gap);
+    }
+    if (contact_->params().axis.on()) {
+      row.add("contact_axis_pairs", (double)c.axis_pairs);
+      row.add("contact_axis_min_distance", c.axis_min_distance);
+    }
+  }
+  if (seal_) {
+    row.add("seal_cells", (double)seal_->stats().sealing_cells);
+    row.add("seal_max_alpha", seal_->stats().max_alpha);
+  }
+  if (ale_->moving()) {
+    const auto &q = ale_->quality();
+    row.add("mesh_min_jacobian", q.min_jacobian);
+    row.add("mesh_max_skewness", q.max_skewness);
+    row.add("mesh_min_jacobian_x", q.where[0]);
+    row.add("mesh_min_jacobian_y", q.where[1]);
+    row.add("mesh_min_jacobian_z", q.where[2]);
+    row.add("geometry_iterations", s ? (double)s->geometry_iterations : 0.0);
+    row.add("geometry_change", s ? s->geometry_change : 0.0);
+  }
   // What the remesh trigger judges: the worst skewness among cells the motion degraded, and with
   // -ale_remesh_ignore_sealed the same outside the sealed gaps (the one it acts on).
-  if (ale_->remeshing()) columns.push_back("mesh_max_degraded_skewness");
+  if (ale_->remeshing())
+    row.add("mesh_max_degraded_skewness", ale_->quality().max_degraded_skewness);
   if (ale_->remeshing() && ale_->ignores_sealed())
-    columns.push_back("mesh_max_degraded_skewness_unsealed");
-  return columns;
+    row.add("mesh_max_degraded_skewness_unsealed", ale_->quality().max_degraded_open);
+}
+
+std::vector<std::string> Simulation::monitor_columns() {
+  MonitorRow row(MonitorRow::names_only);
+  monitor_row(row, nullptr);
+  return row.names();
 }
 
 std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   wss_.update(*this, dt);
-  std::vector<double> row = mon_.evaluate(*this), sm = smon_.evaluate(*this);
-  row.insert(row.end(), sm.begin(), sm.end());
-  const auto vm = valve_.evaluate(*this);
-  row.insert(row.end(), vm.begin(), vm.end());
-  row.insert(row.end(), wss_.values().begin(), wss_.values().end());
-  const auto bv = bcs_->monitor_values();
-  row.insert(row.end(), bv.begin(), bv.end());
-  if (contact_)
-    row.insert(row.end(), {(double)contact_->stats().active_pairs,
-                           contact_->stats().max_penetration, contact_->stats().force});
-  if (contact_ && !contact_->params().walls.empty())
-    row.insert(row.end(), {(double)contact_->stats().wall_pairs, contact_->stats().wall_min_gap});
-  if (contact_ && contact_->params().axis.on())
-    row.insert(row.end(),
-               {(double)contact_->stats().axis_pairs, contact_->stats().axis_min_distance});
-  if (seal_)
-    row.insert(row.end(), {(double)seal_->stats().sealing_cells, seal_->stats().max_alpha});
-  if (ale_->moving())
-    row.insert(row.end(),
-               {ale_->quality().min_jacobian, ale_->quality().max_skewness,
-                ale_->quality().where[0], ale_->quality().where[1], ale_->quality().where[2],
-                (double)s.geometry_iterations, s.geometry_change});
-  if (ale_->remeshing()) row.push_back(ale_->quality().max_degraded_skewness);
-  if (ale_->remeshing() && ale_->ignores_sealed()) row.push_back(ale_->quality().max_degraded_open);
+  MonitorRow filled(MonitorRow::with_values);
+  monitor_row(filled, &s);
+  std::vector<double> row = filled.values();
   if (fields_ && step_index() % out_.fields_every == 0) {
     Vec loc = space_.create_local(), dloc = space_.create_local();
     solution_local(loc);

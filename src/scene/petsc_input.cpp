@@ -87,6 +87,15 @@ std::string check_options_files(int argc, char **argv) {
   return "";
 }
 
+bool options_files_exist(int argc, char **argv) {
+  const std::string missing = check_options_files(argc, argv);
+  if (missing.empty()) return true;
+  int rank;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) fprintf(stderr, "fsi_app: error: %s\n", missing.c_str());
+  return false;
+}
+
 void apply_solver_preset() {
   if (!opt::has("solver_preset")) return;
   const std::string name = opt::string("solver_preset", "");

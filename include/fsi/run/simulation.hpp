@@ -20,6 +20,7 @@
 #include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/solid.hpp"
 #include "fsi/post/monitor_condition.hpp"
+#include "fsi/post/monitor_row.hpp"
 #include "fsi/post/monitors.hpp"
 #include "fsi/post/solid_monitors.hpp"
 #include "fsi/post/valve_monitors.hpp"
@@ -84,8 +85,8 @@ public:
   long step_index() const { return time_->step_index(); }
 
   // After an accepted step of length dt: wall-shear update and the monitor values (the columns
-  // of monitor_columns()); fields when due.
-  std::vector<std::string> monitor_columns() const;
+  // of monitor_columns(), filled by name: monitor_row); fields when due.
+  std::vector<std::string> monitor_columns();
   std::vector<double> after_step(double dt, const StepStats &s);
   void close_outputs();
   // -ts_adapt_switch_when: whether it was given, and whether its condition held after the last
@@ -120,6 +121,7 @@ public:
 
 private:
   void build_physics(const Mesh &mesh);
+  void monitor_row(MonitorRow &row, const StepStats *s);
   void initialize(const std::string &ic);
   void restore(const RunState &s);
   void dirichlet_data(double t_np1);

@@ -20,6 +20,8 @@ std::vector<std::pair<std::string, std::string>> read_options_file(const std::st
 // Before PetscInitialize: every -options_file on the command line (and those they include)
 // exists.  Returns "" or the one-line error naming the missing file.
 std::string check_options_files(int argc, char **argv);
+// The same, said on rank 0 as one error line (MPI initialised, PETSc not yet): false if missing.
+bool options_files_exist(int argc, char **argv);
 
 // After PetscInitialize: insert the options of -solver_preset (the last one given) that are not
 // already set.  Throws InputError for an unknown preset.
