@@ -4,9 +4,9 @@
 // The algorithm: scene -> mesh -> Simulation(mesh, state) -> loop { step | remesh | rebuild } ->
 // report.
 #include "fsi/run/help.hpp"
+#include "fsi/run/loop_state.hpp"
 #include "fsi/run/run_control.hpp"
 #include "fsi/run/run_report.hpp"
-#include "fsi/run/run_session.hpp"
 #include "fsi/run/stages.hpp"
 #include "fsi/scene/options.hpp"
 #include "fsi/scene/petsc_input.hpp"
@@ -45,8 +45,8 @@ int run(MPI_Comm comm) {
   RunReport report(comm, scene, columns);
   columns.insert(columns.begin(), "dt");
   out.open_monitor(columns, restart.empty() ? -1 : first_step);
-  RunSession session(comm, out, report, names, control, sim, mesh, remesh_options, mesh_file,
-                     resume ? resume->remeshes : 0);
+  LoopState loop(comm, out, report, names, control, sim, mesh, remesh_options, mesh_file,
+                 resume ? resume->remeshes : 0);
   FSI_CALL(PetscLogStagePop());
   report.set_setup_time(MPI_Wtime() - t_start);
 
@@ -69,7 +69,7 @@ int run(MPI_Comm comm) {
       } catch (RemeshNeeded &e) { // the step's predicted mesh degrades: retaken on a new mesh
         PetscPrintf(comm, "fsi_app: remeshing before step %ld: %s\n", sim->step_index() + 1,
                     e.what());
-        session.remesh();
+        loop.remesh();
         continue;
       }
       if (!accepted) {
@@ -88,25 +88,25 @@ int run(MPI_Comm comm) {
       progress(comm, sim->step_index(), sim->time(), t_end, dt, s.newton, s.krylov, step_s,
                MPI_Wtime() - loop_start, first_time);
       const long k = sim->step_index();
-      if (remesh_every > 0 && k % remesh_every == 0 && before_end()) session.remesh();
-      if (checkpoint_every > 0 && k % checkpoint_every == 0) session.write_checkpoint();
-      if (rebuild_every > 0 && k % rebuild_every == 0 && before_end()) session.rebuild();
+      if (remesh_every > 0 && k % remesh_every == 0 && before_end()) loop.remesh();
+      if (checkpoint_every > 0 && k % checkpoint_every == 0) loop.write_checkpoint();
+      if (rebuild_every > 0 && k % rebuild_every == 0 && before_end()) loop.rebuild();
       if (const int sig = stop_requested(comm)) {
-        outcome = session.stop(sig);
+        outcome = loop.stop(sig);
         break;
       }
     }
   } catch (SolveError &e) {
-    outcome = session.failed(e.what());
+    outcome = loop.failed(e.what());
   }
   if (outcome.converged && checkpoint_every > 0 && sim->step_index() % checkpoint_every != 0)
-    session.write_checkpoint(); // the end state, to extend the run
+    loop.write_checkpoint(); // the end state, to extend the run
   out.close_monitor();
   sim->close_outputs();
-  session.merge_fields();
+  loop.merge_fields();
   report.absorb(*sim);
   report.write(out, *mesh, *sim, control, outcome, MPI_Wtime() - t_start, restart, first_step,
-               first_time, session.checkpoints() > 0 ? session.checkpoint_path() : "");
+               first_time, loop.checkpoints() > 0 ? loop.checkpoint_path() : "");
   return outcome.exit_code;
 }
 

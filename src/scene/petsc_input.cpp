@@ -45,7 +45,8 @@ std::string preset_path(const std::string &name) {
   return std::string(FSI_SOURCE_DIR) + "/petsc_options/" + name + ".opts";
 }
 
-// The stored message of PETSc's first "unknown type" error of this run (no traceback printed).
+// PETSc's "unknown type" errors return without a traceback (throw_petsc makes them one line);
+// every other error keeps PETSc's own handler.
 PetscErrorCode quiet_unknown_type(MPI_Comm comm, int line, const char *fun, const char *file,
                                   PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx) {
   if (n == PETSC_ERR_ARG_UNKNOWN_TYPE) return n;
@@ -99,8 +100,11 @@ bool options_files_exist(int argc, char **argv) {
 void apply_solver_preset() {
   if (!opt::has("solver_preset")) return;
   const std::string name = opt::string("solver_preset", "");
+  if (name.empty())
+    throw InputError("option -solver_preset needs a preset name, e.g. -solver_preset direct "
+                     "(the files in petsc_options/)");
   const std::string path = preset_path(name);
-  if (name.empty() || !readable(path))
+  if (!readable(path))
     throw InputError("option -solver_preset: no preset '" + name +
                      "' (petsc_options/NAME.opts, or a path ending in .opts); e.g. "
                      "-solver_preset direct");

@@ -12,7 +12,8 @@
 
 namespace fsi {
 
-// An options file as PETSc reads it: "-key value" pairs, '#' starts a comment; a value is the
+// An options file read as PETSc does for our purposes: "-key value" pairs, '#' starts a comment (a
+// quoted value with spaces is not kept whole: presets and includes need none); a value is the
 // token after a key unless that token is itself a key (a number such as -1 is a value).
 // Throws InputError when the file cannot be read.
 std::vector<std::pair<std::string, std::string>> read_options_file(const std::string &path);

@@ -1,4 +1,4 @@
-#include "fsi/run/run_session.hpp"
+#include "fsi/run/loop_state.hpp"
 #include "fsi/io/field_writer.hpp"
 #include "fsi/run/run_control.hpp"
 #include "fsi/scene/options.hpp"
@@ -7,17 +7,17 @@
 
 namespace fsi {
 
-RunSession::RunSession(MPI_Comm comm, Output &out, RunReport &report, OutputNames &names,
-                       StepControl &control, std::unique_ptr<Simulation> &sim,
-                       std::unique_ptr<Mesh> &mesh, const RemeshOptions &remesh_options,
-                       std::string mesh_file, long remeshes)
+LoopState::LoopState(MPI_Comm comm, Output &out, RunReport &report, OutputNames &names,
+                     StepControl &control, std::unique_ptr<Simulation> &sim,
+                     std::unique_ptr<Mesh> &mesh, const RemeshOptions &remesh_options,
+                     std::string mesh_file, long remeshes)
     : comm_(comm), out_(out), report_(report), names_(names), control_(control), sim_(sim),
       mesh_(mesh), mesh_file_(std::move(mesh_file)), remeshes_(remeshes),
       remesh_options_(remesh_options), checkpoint_path_(out.dir() + "/checkpoint.h5"),
       crash_test_(opt::integer_at_least("checkpoint_crash_test", 0, 0)), field_parts_{
                                                                              names.fields} {}
 
-RunState RunSession::state() const {
+RunState LoopState::state() const {
   RunState s = sim_->capture();
   s.dt = control_.dt;
   s.easy_run = control_.easy_run;
@@ -27,14 +27,14 @@ RunState RunSession::state() const {
   return s;
 }
 
-void RunSession::write_checkpoint() {
+void LoopState::write_checkpoint() {
   const double o0 = MPI_Wtime();
   state().write(comm_, checkpoint_path_, crash_test_);
   ++checkpoints_;
   report_.add_output_time(MPI_Wtime() - o0);
 }
 
-void RunSession::remesh() {
+void LoopState::remesh() {
   RemeshReport r;
   report_.absorb(*sim_);
   RunState st = state();
@@ -51,7 +51,7 @@ void RunSession::remesh() {
   report_.remeshed(out_, r);
 }
 
-void RunSession::rebuild() {
+void LoopState::rebuild() {
   const double r0 = MPI_Wtime();
   report_.absorb(*sim_);
   sim_ = fsi::rebuild(std::move(sim_), *mesh_, names_, state());
@@ -59,14 +59,14 @@ void RunSession::rebuild() {
   report_.rebuilt(MPI_Wtime() - r0);
 }
 
-void RunSession::merge_fields() const {
+void LoopState::merge_fields() const {
   int rank;
   MPI_Comm_rank(comm_, &rank);
   if (names_.fields_every > 0 && field_parts_.size() > 1 && rank == 0)
     merge_xdmf(out_.dir(), field_parts_, field_parts_[0] + "_all");
 }
 
-RunOutcome RunSession::stop(int sig) {
+RunOutcome LoopState::stop(int sig) {
   write_checkpoint();
   RunOutcome o{false, 128 + sig,
                std::string("stopped by signal ") + signal_name(sig) + " at step " +
@@ -76,7 +76,7 @@ RunOutcome RunSession::stop(int sig) {
   return o;
 }
 
-RunOutcome RunSession::failed(const std::string &why) {
+RunOutcome LoopState::failed(const std::string &why) {
   RunOutcome o{false, 3, why};
   PetscPrintf(comm_, "fsi_app: %s\n", why.c_str());
   write_checkpoint(); // the last converged state, to resume from with other settings

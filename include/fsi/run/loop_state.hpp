@@ -13,11 +13,11 @@
 
 namespace fsi {
 
-class RunSession {
+class LoopState {
 public:
-  RunSession(MPI_Comm comm, Output &out, RunReport &report, OutputNames &names,
-             StepControl &control, std::unique_ptr<Simulation> &sim, std::unique_ptr<Mesh> &mesh,
-             const RemeshOptions &remesh_options, std::string mesh_file, long remeshes);
+  LoopState(MPI_Comm comm, Output &out, RunReport &report, OutputNames &names, StepControl &control,
+            std::unique_ptr<Simulation> &sim, std::unique_ptr<Mesh> &mesh,
+            const RemeshOptions &remesh_options, std::string mesh_file, long remeshes);
   // The state at the last accepted step, with the step control and the mesh it lives on.
   RunState state() const;
   void write_checkpoint();
