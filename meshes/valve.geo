@@ -62,6 +62,16 @@ If (!Exists(post)) post = 0; EndIf
 If (post < 0)
   Error("valve.geo: post (the commissural posts' depth) must be >= 0");
 EndIf
+// Shapes whose leaflets would intersect each other or miss the axis.
+If (gap <= 0 || gap >= Ra / 4)
+  Error("valve.geo: gap (between neighbouring free edges) must lie in (0, Ra/4): at 0 the leaflets intersect; e.g. gap=0.002");
+EndIf
+If (rho_l <= Ra)
+  Error("valve.geo: rho_l (the leaflet ellipsoid's radius) must exceed Ra, or the leaflets do not reach the axis");
+EndIf
+If (rcenter >= Ra / 2 || post >= Ra / 2)
+  Error("valve.geo: rcenter and post must be below Ra/2, or the leaflets lose most of their free edge");
+EndIf
 If (coapt < 0)
   Error("valve.geo: coapt (the coaptation height) must be >= 0");
 EndIf

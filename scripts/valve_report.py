@@ -16,6 +16,10 @@ starts, the earlier one's rows stop.  Prints (markdown)
     ejection started early and counts as ejected), so that a closed valve's ringing back and
     forth counts only by its net, plus the net flow back while closed before the cycle's
     opening: the previous diastole's tail);
+  - per cycle, the figures a cardiologist reads (what each means: docs/valve.md): peak and
+    peak-flow orifice area, mean systolic gradient, peak transvalvular velocity, opening and
+    closing times, the diastolic orifice and coaptation height, the aortic pressure range
+    (--p-offset MMHG: added to the outlet pressure, for scenes in gauge; 80 for valve_pressure);
   - with --hold MS (a closed valve under a held load, from MS to the end): the leak, i.e. the mean
     flow back through the valve over whole periods of the leaflets' ringing (from the first to the
     last upward crossing of the mean), the same leak from a fit of a decaying oscillation about
@@ -86,6 +90,7 @@ hold = hold * 1e-3 if hold is not None else None
 diastole = take("--diastole", 0.79)
 stroke = take("--stroke", 102.1)
 closed_text = take_text("--closed", "contact_pairs>100")
+p_offset = take("--p-offset", 0.0)
 closed_terms = parse_condition(closed_text)
 if diastole <= 0 or stroke <= 0:
     sys.exit("valve_report: --diastole and --stroke must be positive (seconds, millilitres), e.g. --diastole 0.79 --stroke 102.1")
@@ -171,6 +176,72 @@ for c in sorted(cycles):
     reg = closing + after + before
     print(f"| {c + 1} | {shut} | {f*1e6:.2f} | {closing*1e6:.3f} | {after*1e6:.3f} | {before*1e6:.3f} | {reg*1e6:.3f} | "
           f"{reg/f*100 if f else 0:.2f} % |")
+
+
+def crossing(t, y, level, rising, start, stop):
+    """First time in rows [start, stop) where y crosses level upwards (rising) or downwards,
+    linearly interpolated; None if it does not."""
+    for i in range(max(start, 1), stop):
+        a, b = y[i - 1], y[i]
+        if (a < level <= b) if rising else (a > level >= b):
+            return t[i - 1] + (level - a) / (b - a) * (t[i] - t[i - 1])
+    return None
+
+
+def clinical(rows):
+    """A cycle's clinical figures: dict of name -> value (None where the run cannot say)."""
+    t = np.array([r["time"] for r in rows])
+    dt = np.array([r["dt"] for r in rows])
+    q = np.array([-r["inlet_flux"] for r in rows])
+    col = lambda k: np.array([r.get(k, np.nan) for r in rows])
+    goa, dp = col("valve_goa"), col("valve_dp")
+    peak = int(np.argmax(q))
+    tc = next((i for i in range(peak + 1, len(rows)) if is_closed(rows[i])), len(rows))
+    out = {}
+    if "outlet_p" in rows[0]:
+        pa = col("outlet_p") / 133.322 + p_offset
+        out["aorta_max_mmHg"], out["aorta_min_mmHg"] = float(np.max(pa)), float(np.min(pa))
+    if "valve_goa" not in rows[0]:
+        return out
+    out["peak_goa_cm2"] = np.nanmax(goa) * 1e4
+    win = np.abs(t - t[peak]) <= 0.02  # +-20 ms about peak flow: the leaflets flutter there
+    out["peak_flow_goa_cm2"] = float(np.nanmean(goa[win])) * 1e4
+    eject = np.arange(len(rows)) < tc
+    eject &= q > 0
+    out["mean_gradient_mmHg"] = float(np.sum(dp[eject] * dt[eject]) / np.sum(dt[eject])) / 133.322 if eject.any() else None
+    out["peak_velocity_m_s"] = float(np.nanmax(col("valve_peak_velocity")[eject])) if eject.any() and "valve_peak_velocity" in rows[0] else None
+    # Opening and closing: 10 -> 90 % (90 -> 10 %) of the swing between the cycle's smallest
+    # orifice before the peak and the largest.
+    g_top = int(np.nanargmax(goa))
+    lo, hi = np.nanmin(goa[:g_top + 1]), goa[g_top]
+    l10, l90 = lo + 0.1 * (hi - lo), lo + 0.9 * (hi - lo)
+    a, b = crossing(t, goa, l10, True, 0, g_top + 1), crossing(t, goa, l90, True, 0, g_top + 1)
+    out["opening_ms"] = (b - a) * 1e3 if a is not None and b is not None else None
+    lo2 = np.nanmin(goa[g_top:])
+    l10c, l90c = lo2 + 0.1 * (hi - lo2), lo2 + 0.9 * (hi - lo2)
+    last90 = max((i for i in range(g_top, len(rows)) if goa[i] >= l90c), default=g_top)
+    c90 = crossing(t, goa, l90c, False, last90, len(rows))
+    c10 = crossing(t, goa, l10c, False, last90, len(rows))
+    out["closing_ms"] = (c10 - c90) * 1e3 if c10 is not None and c90 is not None else None
+    shut = np.array([is_closed(r) for r in rows]) & (np.arange(len(rows)) > peak)
+    ratio = col("valve_goa_contact_ratio") if "valve_goa_contact_ratio" in rows[0] else col("valve_goa_ratio")
+    out["diastolic_goa_percent"] = float(np.median(ratio[shut])) * 100 if shut.any() else None
+    out["coaptation_height_mm"] = (float(np.median(col("valve_coaptation_height")[shut])) * 1e3
+                                   if shut.any() and "valve_coaptation_height" in rows[0] else None)
+    return out
+
+
+names = [("peak_goa_cm2", "peak orifice [cm^2]"), ("peak_flow_goa_cm2", "orifice at peak flow +-20 ms [cm^2]"),
+         ("mean_gradient_mmHg", "mean systolic gradient [mmHg]"), ("peak_velocity_m_s", "peak velocity [m/s]"),
+         ("opening_ms", "opening 10-90 % [ms]"), ("closing_ms", "closing 90-10 % [ms]"),
+         ("diastolic_goa_percent", "closed orifice [% annulus]"),
+         ("coaptation_height_mm", "coaptation height [mm]"), ("aorta_max_mmHg", "aorta max [mmHg]"),
+         ("aorta_min_mmHg", "aorta min [mmHg]")]
+figs = {c: clinical([r for r in mon if int(r["time"] / period - 1e-12) == c]) for c in sorted(cycles)}
+print("\n| cycle | " + " | ".join(n for _, n in names) + " |")
+print("|---|" + "---|" * len(names))
+for c, f in figs.items():
+    print(f"| {c + 1} | " + " | ".join("-" if f.get(k) is None else f"{f[k]:.3g}" for k, _ in names) + " |")
 
 
 def leak_over_periods(t, q):

@@ -61,7 +61,17 @@ cases += [
     ("restart file from another mesh", ["-restart", ckfile, "-mesh_params", "R=0.005,L=0.01,ncirc=30"], "another mesh"),
     ("restart file from another scene", ["-restart", ckfile, "-ts_type", "alpha", "-ts_dt", "0.1"], "another scene"),
 ]
-for name, extra, needle, sc in [c + ("poiseuille",) for c in cases] + [c + ("mr_uniaxial",) for c in solid_cases]:
+cases += [("Windkessel resistance 0", ["-bc_outlet_type", "windkessel", "-bc_outlet_R_p", "0",
+                                      "-bc_outlet_C", "1e-8", "-bc_outlet_R_d", "1e8"], "R_p")]
+# The valve: leaflets that would intersect (refused by valve.geo before any mesh is built), and
+# a contact offset wider than the gap the mesh leaves between the leaflets at rest.
+valve_cases = [
+    ("leaflets intersecting", ["-mesh_params", "gap=0"], "gap"),
+    ("contact offset wider than the gap", ["-contact_offset", "0.0009"], "contact_offset"),
+]
+for name, extra, needle, sc in ([c + ("poiseuille",) for c in cases] +
+                                [c + ("mr_uniaxial",) for c in solid_cases] +
+                                [c + ("valve_closing",) for c in valve_cases]):
     r = run(scene(sc), extra=extra)
     lines = [l for l in r.out.splitlines() if "fsi_app: error:" in l]
     check(r.code != 0, f"{name}: non-zero exit ({r.code})")

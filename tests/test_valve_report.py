@@ -5,7 +5,11 @@ valve's forward swings), a closing backflow of
 +-2 L/min over whole periods (it must count only by its net); the second cycle starts closed and
 leaks until its opening at 50 ms, and opens again 28 ms before its end (5 L/min forward: the
 next ejection started early, ejected volume, not a negative leak).  Also: a condition on a
-missing column and a malformed one exit non-zero naming --closed."""
+missing column and a malformed one exit non-zero naming --closed.
+The clinical table of the first cycle on the same run, given an orifice that opens linearly from
+0.2 to 3.0 cm^2 over 50 ms (10-90 %: 40 ms) and closes from 0.28 to 0.32 s (32 ms), 1000 Pa across
+the valve while blood goes forward (7.50 mmHg mean), a half-sine peak velocity of 1.2 m/s, and
+3 mm of coaptation while closed."""
 import math
 import os
 import re
@@ -28,9 +32,17 @@ def flow(s):
     return -0.5 + 2 * math.sin(2 * math.pi * (s - 0.33 - DT) / 0.014), 200
 
 
+def valve(s, q, pairs):
+    """Orifice [m^2], dp [Pa], peak velocity [m/s], coaptation height [m] at s into a cycle."""
+    goa = 0.2 + 2.8 * min(s / 0.05, 1.0, max(0.0, (0.32 - s) / 0.04))
+    return goa * 1e-4, 1000.0 if q > 0 else -9000.0, 1.2 * max(0.0, math.sin(math.pi * s / 0.3)), \
+        0.003 if pairs else 0.0
+
+
 def write_run(d):
     with open(os.path.join(d, "monitor.csv"), "w") as f:
-        f.write("step,time,newton,krylov,step_seconds,dt,inlet_flux,contact_pairs\n")
+        f.write("step,time,newton,krylov,step_seconds,dt,inlet_flux,contact_pairs,valve_goa,valve_dp,"
+                "valve_peak_velocity,valve_coaptation_height\n")
         n = int(round(T / DT))
         for k in range(1, 2 * n + 1):
             t, s = k * DT, (k - n * (k > n)) * DT
@@ -39,7 +51,8 @@ def write_run(d):
                 q, pairs = -0.5, 200
             if k - n > REOPEN / DT + 1e-9:  # and opens again before its end
                 q, pairs = 5.0, 0
-            f.write(f"{k},{t:.10f},3,10,1.0,{DT},{-q * LPM:.12e},{pairs}\n")
+            g, dp, v, ch = valve(s, q, pairs)
+            f.write(f"{k},{t:.10f},3,10,1.0,{DT},{-q * LPM:.12e},{pairs},{g:.8e},{dp},{v:.8f},{ch}\n")
 
 
 def report(*args):
@@ -83,6 +96,17 @@ with tempfile.TemporaryDirectory() as d:
                                      ("regurgitant", reg, closing + after[c] + before[c], 0.002)):
             check(abs(got - want) <= tol, f"cycle {c + 1}: {name} {got} mL, expected {want:.4f}")
         check(abs(frac - 100 * reg / f) < 0.01, f"cycle {c + 1}: fraction {frac} % of {reg}/{f}")
+    # The clinical table's first cycle (rows at the steps' ends: within a step of the exact times).
+    head = re.search(r"^\| cycle \| peak orifice.*$", out, re.M)
+    first = re.search(r"^\| 1 \| ([^\n]*) \|$", out[head.end():], re.M) if head else None
+    cells = [c.strip() for c in first.group(1).split("|")] if first else []
+    names = [c.strip() for c in head.group(0).strip("|").split("|")[1:]] if head else []
+    got = dict(zip(names, cells))
+    for name, want, tol in (("peak orifice [cm^2]", 3.0, 1e-3), ("mean systolic gradient [mmHg]", 7.50, 0.01),
+                            ("peak velocity [m/s]", 1.2, 1e-3), ("opening 10-90 % [ms]", 40.0, 0.6),
+                            ("closing 90-10 % [ms]", 32.0, 0.6), ("coaptation height [mm]", 3.0, 1e-3)):
+        val = float(got[name]) if got.get(name, "-") != "-" else None
+        check(val is not None and abs(val - want) <= tol, f"clinical table, cycle 1: {name} {val}, expected {want}")
     for bad, word in (("seal_cells>3", "no monitor column 'seal_cells'"),
                       ("contact_pairs=3", "COLUMN>VALUE or COLUMN<VALUE")):
         code, out = report(d, "--closed", bad)

@@ -118,6 +118,23 @@ std::vector<ContactModule::Pair> ContactModule::pairs_within(double radius, bool
   return pairs;
 }
 
+std::vector<ContactModule::Touch> ContactModule::touching() {
+  const ContactSurface &S = *surface_;
+  std::vector<Touch> out;
+  for (const Pair &pr : pairs_within(p_.offset)) {
+    const double *x = S.x(pr.node);
+    out.push_back({{x[0], x[1], x[2]}, S.component(pr.node), S.triangle_component(pr.tri)});
+  }
+  return out;
+}
+
+double ContactModule::smallest_gap(double radius) {
+  double d = radius;
+  for (const Pair &pr : pairs_within(radius))
+    d = std::min(d, pr.d);
+  return d;
+}
+
 void ContactModule::pick_pairs() {
   picked_ = pairs_within(p_.offset + p_.margin);
   picked_valid_ = true;

@@ -8,11 +8,14 @@
 
 namespace fsi {
 
-void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const SolidModule *solid) {
+void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const SolidModule *solid,
+                          double touching_gap) {
   active_ = opt::has("valve_annulus_radius");
   if (!active_) return;
+  touching_gap_ = touching_gap;
   space_ = &space;
   solid_ = solid;
+  fluid_ = fluid;
   comm_ = PetscObjectComm((PetscObject)space.dm);
   if (!fluid || !solid)
     throw InputError("-valve_annulus_radius needs a fluid and a solid (-physics fluid,solid)");
@@ -36,6 +39,7 @@ void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const So
   if (planes.size() != 2 || !(planes[0] < 0 && planes[1] > 0))
     throw InputError("option -valve_dp_planes needs two axial positions a,b [m] from the annulus "
                      "centre, upstream a < 0 and downstream b > 0");
+  down_at_ = planes[1];
   const double rp = opt::positive("valve_dp_radius", 0.8 * R_);
   // Disc samples: rings of equal width, 6 i points on ring i, each with its ring area share.
   const int rings = 6;
@@ -65,8 +69,17 @@ void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const So
 
 std::vector<std::string> ValveMonitors::columns() const {
   if (!active_) return {};
-  return {"valve_p_up",         "valve_p_down",        "valve_dp", "valve_goa", "valve_goa_ratio",
-          "valve_leaflet_umax", "valve_leaflet_vm_max"};
+  std::vector<std::string> c = {"valve_p_up",
+                                "valve_p_down",
+                                "valve_dp",
+                                "valve_goa",
+                                "valve_goa_ratio",
+                                "valve_leaflet_umax",
+                                "valve_leaflet_vm_max",
+                                "valve_peak_velocity",
+                                "valve_peak_velocity_axial"};
+  if (touching_gap_ > 0) c.push_back("valve_goa_contact_ratio");
+  return c;
 }
 
 double ValveMonitors::plane_mean_pressure(const std::vector<Sample> &plane,
@@ -86,9 +99,82 @@ double ValveMonitors::plane_mean_pressure(const std::vector<Sample> &plane,
   return glob[0] / glob[1];
 }
 
+// Every P2 velocity node of every fluid cell (a node shared by cells is seen more than once: the
+// maximum does not mind); edge nodes sit at their edge's midpoint (cells are affine).
+std::array<double, 2> ValveMonitors::peak_velocity(const PetscScalar *u,
+                                                   const std::vector<double> &x) const {
+  double best[2] = {0, 0};
+  for (PetscInt k : fluid_->cells()) {
+    double X[4][3], p[10][3];
+    space_->cell_points(k, x.data(), X);
+    for (int a = 0; a < 4; ++a)
+      for (int d = 0; d < 3; ++d)
+        p[a][d] = X[a][d];
+    for (int e = 0; e < 6; ++e)
+      for (int d = 0; d < 3; ++d)
+        p[4 + e][d] = 0.5 * (X[TET_EDGE[e][0]][d] + X[TET_EDGE[e][1]][d]);
+    for (int a = 0; a < 10; ++a) {
+      double s = 0, v2 = 0;
+      for (int d = 0; d < 3; ++d)
+        s += (p[a][d] - c_[d]) * axis_[d];
+      if (s < 0 || s > down_at_) continue;
+      const PetscInt off = space_->cell_vdof[10 * k + a];
+      for (int d = 0; d < 3; ++d)
+        v2 += std::pow(PetscRealPart(u[off + d]), 2);
+      if (v2 > best[0] * best[0]) best[0] = std::sqrt(v2), best[1] = s;
+    }
+  }
+  // The largest speed over the ranks, and the axial position where it is.
+  struct {
+    double v;
+    int rank;
+  } mine{best[0], 0}, top;
+  MPI_Comm_rank(comm_, &mine.rank);
+  MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm_);
+  double at = best[1];
+  MPI_Bcast(&at, 1, MPI_DOUBLE, top.rank, comm_);
+  return {top.v, at};
+}
+
+std::vector<double> ValveMonitors::coaptation(const std::vector<ContactModule::Touch> &touch,
+                                              int pieces) const {
+  const double bin = 0.001; // [m] radial bin width
+  double height = -1, length = -1;
+  for (int a = 0; a < pieces; ++a)
+    for (int b = a + 1; b < pieces; ++b) {
+      // Per radial bin: the lowest and highest touching node of this seam (either side).
+      std::vector<std::array<double, 2>> span;
+      double rmin = 1e300, rmax = -1e300;
+      for (const auto &t : touch) {
+        if (!((t.piece == a && t.other == b) || (t.piece == b && t.other == a))) continue;
+        double s = 0, r2 = 0, q[3];
+        for (int d = 0; d < 3; ++d)
+          q[d] = t.x[d] - c_[d], s += q[d] * axis_[d];
+        for (int d = 0; d < 3; ++d)
+          r2 += std::pow(q[d] - s * axis_[d], 2);
+        const double r = std::sqrt(r2);
+        rmin = std::min(rmin, r), rmax = std::max(rmax, r);
+        const size_t i = (size_t)(r / bin);
+        if (span.size() <= i) span.resize(i + 1, {1e300, -1e300});
+        span[i] = {std::min(span[i][0], s), std::max(span[i][1], s)};
+      }
+      std::vector<double> h;
+      for (auto &sp : span)
+        if (sp[1] >= sp[0]) h.push_back(sp[1] - sp[0]);
+      double seam_h = 0, seam_l = 0;
+      if (!h.empty()) {
+        std::nth_element(h.begin(), h.begin() + h.size() / 2, h.end());
+        seam_h = h[h.size() / 2], seam_l = rmax - rmin;
+      }
+      height = height < 0 ? seam_h : std::min(height, seam_h);
+      length = length < 0 ? seam_l : std::min(length, seam_l);
+    }
+  return {std::max(height, 0.0), std::max(length, 0.0)};
+}
+
 // Raster of the annulus disc; a pixel is covered when its centre lies in the projection of a
 // face of a deformed leaflet cell (the union of a tetrahedron's face projections is its shadow).
-double ValveMonitors::orifice_area(const std::vector<double> &x) const {
+std::array<double, 2> ValveMonitors::orifice_area(const std::vector<double> &x) const {
   const int n = pixels_;
   const double hpix = 2 * R_ / n;
   std::vector<unsigned char> covered(size_t(n) * n, 0), all(size_t(n) * n);
@@ -125,13 +211,27 @@ double ValveMonitors::orifice_area(const std::vector<double> &x) const {
     }
   }
   MPI_Allreduce(covered.data(), all.data(), n * n, MPI_UNSIGNED_CHAR, MPI_MAX, comm_);
-  long open = 0;
+  // The shadow grown by half the touching gap: a disc of that radius about every covered pixel
+  // (pixels within it of a covered one), so that a gap narrower than the touching gap closes.
+  const int m = (int)std::floor(0.5 * touching_gap_ / hpix);
+  std::vector<unsigned char> grown = all;
+  if (m > 0)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        if (!all[size_t(i) * n + j]) continue;
+        for (int a = std::max(0, i - m); a <= std::min(n - 1, i + m); ++a)
+          for (int b = std::max(0, j - m); b <= std::min(n - 1, j + m); ++b)
+            if ((a - i) * (a - i) + (b - j) * (b - j) <= m * m) grown[size_t(a) * n + b] = 1;
+      }
+  long open = 0, open_grown = 0;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double px = -R_ + (i + 0.5) * hpix, py = -R_ + (j + 0.5) * hpix;
-      if (px * px + py * py < R_ * R_ && !all[size_t(i) * n + j]) ++open;
+      if (px * px + py * py >= R_ * R_) continue;
+      open += !all[size_t(i) * n + j];
+      open_grown += !grown[size_t(i) * n + j];
     }
-  return open * hpix * hpix;
+  return {open * hpix * hpix, open_grown * hpix * hpix};
 }
 
 std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
@@ -143,6 +243,7 @@ std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
   FSI_CALL(VecGetArrayRead(uloc, &u));
   FSI_CALL(VecGetArrayRead(dloc, &D));
   const double pu = plane_mean_pressure(up_, u), pd = plane_mean_pressure(down_, u);
+  const std::array<double, 2> vpeak = peak_velocity(u, pb.coordinates());
 
   // Deformed leaflet vertices, the largest displacement and the largest von Mises stress (at the
   // cell centres: P2 displacement, linear stress).
@@ -194,12 +295,16 @@ std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
   }
   double loc[2] = {umax, vm}, glob[2];
   MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_MAX, comm_);
-  const double goa = orifice_area(x);
+  const std::array<double, 2> goa = orifice_area(x);
+  const double disc = M_PI * R_ * R_;
   FSI_CALL(VecRestoreArrayRead(uloc, &u));
   FSI_CALL(VecRestoreArrayRead(dloc, &D));
   FSI_CALL(VecDestroy(&uloc));
   FSI_CALL(VecDestroy(&dloc));
-  return {pu, pd, pu - pd, goa, goa / (M_PI * R_ * R_), glob[0], glob[1]};
+  std::vector<double> v = {pu,      pd,      pu - pd,  goa[0],  goa[0] / disc,
+                           glob[0], glob[1], vpeak[0], vpeak[1]};
+  if (touching_gap_ > 0) v.push_back(goa[1] / disc);
+  return v;
 }
 
 } // namespace fsi

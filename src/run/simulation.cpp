@@ -128,6 +128,17 @@ void Simulation::build_physics(const Mesh &mesh) {
                                              std::max(cp.wall_exclude, 3 * cp.wall_offset));
       }
       auto c = std::make_unique<ContactModule>(surface, cp, wall);
+      // With a fluid between them, pieces closer than the offset at rest would be pushed apart
+      // through the fluid at the first step: the offset is the gap touching pieces keep, it must
+      // fit in the mesh's.  (A solid alone may start pressed: a preloaded contact.)
+      const double g = fluid_ ? c->smallest_gap(2 * cp.offset) : 2 * cp.offset;
+      if (g <= cp.offset)
+        throw InputError("-contact_offset " + std::to_string(cp.offset) +
+                         " m is not below the smallest gap between the contact pieces of the "
+                         "mesh as built (" +
+                         std::to_string(g) +
+                         " m): at rest they would be pushed apart; use a smaller offset or "
+                         "mesh a wider gap (valve.geo: gap)");
       contact_ = c.get();
       system_->add_module(std::move(c));
     }
@@ -169,7 +180,7 @@ void Simulation::build_physics(const Mesh &mesh) {
   system_->setup_solver();
   mon_.setup(mesh, space_, fluid_, exact_.get());
   smon_.setup(space_, solid_, exact_solid_.get());
-  valve_.setup(space_, fluid_, solid_);
+  valve_.setup(space_, fluid_, solid_, contact_ ? contact_->params().offset : 0.0);
   wss_.setup(mesh, space_, fluid_, exact_.get(), out_.dir, scene_.time.t_end, out_.hemo,
              material_X_);
   if (out_.fields_every > 0) {
@@ -432,6 +443,10 @@ void Simulation::monitor_row(MonitorRow &row, const StepStats *s) {
       row.add("contact_axis_pairs", (double)c.axis_pairs);
       row.add("contact_axis_min_distance", c.axis_min_distance);
     }
+    const int pieces = contact_->n_pieces();
+    if (valve_.active() && (pieces == 2 || pieces == 3))
+      row.add(ValveMonitors::coaptation_columns(),
+              [&] { return valve_.coaptation(contact_->touching(), pieces); });
   }
   if (seal_) {
     row.add("seal_cells", (double)seal_->stats().sealing_cells);

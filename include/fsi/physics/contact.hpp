@@ -28,6 +28,7 @@
 #include "fsi/physics/contact_surface.hpp"
 #include "fsi/physics/contact_wall.hpp"
 #include "fsi/physics/physics_module.hpp"
+#include <array>
 #include <memory>
 #include <unordered_set>
 
@@ -76,6 +77,17 @@ public:
   bool couplings_changed() const override { return changed_; }
   void pattern_built() override;
   const ContactStats &stats() const { return stats_; }
+  // Surface nodes closer to another piece than the offset on the current positions (the same on
+  // every rank): where the pieces touch, e.g. the leaflets' coaptation.
+  struct Touch {
+    std::array<double, 3> x;
+    int piece, other;
+  };
+  std::vector<Touch> touching();
+  int n_pieces() const { return surface_->n_components(); }
+  // The smallest distance between two pieces on the current positions (the reference ones
+  // before the first step), or `radius` if none is closer.
+  double smallest_gap(double radius);
   const ContactParams &params() const { return p_; }
 
 private:

@@ -135,7 +135,7 @@ private:
   std::unique_ptr<ExactSolid> exact_solid_;
   const FluidModule *fluid_ = nullptr;
   const SolidModule *solid_ = nullptr;
-  const ContactModule *contact_ = nullptr;
+  ContactModule *contact_ = nullptr;
   const GapSeal *seal_ = nullptr;
   std::unique_ptr<Boundaries> bcs_;
   std::unique_ptr<GeneralizedAlpha> time_;
