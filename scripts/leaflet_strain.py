@@ -21,8 +21,16 @@ if "--commissures" in args:
     del args[i:i + 2]
 if len(args) != 2:
     sys.exit(__doc__)
-fn, step = args[0], int(args[1])
-with h5py.File(fn, "r") as f:
+fn = args[0]
+try:
+    step = int(args[1])
+except ValueError:
+    sys.exit(f"leaflet_strain: STEP must be a step number, got '{args[1]}'")
+try:
+    f = h5py.File(fn, "r")
+except OSError:
+    sys.exit(f"leaflet_strain: cannot read {fn} as an HDF5 field file (a run's fields.h5 or remeshN_fields.h5)")
+with f:
     key = f"fields/displacement_{step:06d}"
     if key not in f:
         have = sorted(k for k in f.get("fields", {}).keys() if k.startswith("displacement_"))

@@ -79,6 +79,8 @@ def main():
             C, R_d = (float(x) for x in a.given.split(","))
         except ValueError:
             raise SystemExit("rcr_tune: --given takes C,R_d, e.g. --given 2.0,1.0")
+        if min(C, R_d) <= 0:
+            raise SystemExit("rcr_tune: --given C,R_d must both be positive, e.g. --given 2.0,1.0")
         sv, pmin, pmax, _, qmax, _ = periodic(t_tab, p_tab, a.period, a.rp, C, R_d, a.pv, a.area)
         print(f"0D periodic state with C {C:g} mL/mmHg, R_d {R_d:g} mmHg s/mL, orifice {a.area:g} "
               f"cm^2: stroke {sv:.1f} mL, aorta {pmax:.1f}/{pmin:.1f} mmHg, peak flow {qmax * 60e-3:.1f} L/min")

@@ -65,8 +65,8 @@ private:
   const Space *space_ = nullptr;
   const SolidModule *solid_ = nullptr;
   const FluidModule *fluid_ = nullptr;
-  double down_at_ = 0;
-  double touching_gap_ = 0; // axial position of the downstream pressure plane [m]
+  double down_at_ = 0;      // axial position of the downstream pressure plane [m]
+  double touching_gap_ = 0; // the contact offset [m] (0: no contact)
   bool active_ = false;
   double R_ = 0;
   std::array<double, 3> c_{}, axis_{}, e1_{}, e2_{};
