@@ -1,7 +1,8 @@
 """fsi_app -help (issue 13): exits 0 without a scene and documents every option the sources read
 (each with a default and a unit), whether the scene switches its physics on or not, and every
-registered boundary-condition type; no entry that nothing reads, literal defaults as the readers'
-are; a misspelt PETSc type is one line naming the option."""
+registered physics, monitor and boundary-condition type; no entry that nothing reads, literal
+defaults as the readers' are; each option declared next to its reader (issue 56: in the folder
+of a file that reads it); a misspelt PETSc type is one line naming the option."""
 import os
 import re
 import subprocess
@@ -72,6 +73,35 @@ for name, ds in sorted(literal.items()):
         wrong.append(f"-{name}: reader {d}, help {shown!r}")
 print("defaults that differ:", wrong)
 check(not wrong, "every literal default in -help equals its reader's")
+# Declared next to the reader: an option's declaration {"name", default, unit, meaning} is in the
+# folder of a file that reads it.  Folders that make one part count as one: the solver (problem,
+# solver, scene: the presets), the boundary conditions and their waveforms (analytic).  The
+# driver (src/main.cpp, src/run/) reads options that the parts it drives declare.
+part = {"src/solver": "src/problem", "src/scene": "src/problem", "src/analytic": "src/boundary"}
+folder = lambda p: part.get(os.path.dirname(p), os.path.dirname(p))
+readers, declared = {}, {}
+for root, _, files in os.walk(os.path.join(SRC, "src")):
+    for f in files:
+        path = os.path.relpath(os.path.join(root, f), SRC)
+        text = open(os.path.join(root, f)).read()
+        names = re.findall(r'(?:opt::[a-z_]+|from_option|parse_points)\("([A-Za-z_0-9]+)"', text)
+        names += ["bc_<b>_" + n for n in re.findall(r'opt::[a-z_]+\((?:pre_?|prefix) \+ "([a-z_0-9]+)"', text)]
+        for n in names:
+            readers.setdefault(n, set()).add(path)
+        for n in re.findall(r'\{"([A-Za-z_0-9<>]+)",\s*"[^"]*",\s*"[^"]*",', text):
+            declared.setdefault(n, set()).add(folder(path))
+astray = []
+for n, files in sorted(readers.items()):
+    if n in petsc or any(f == "src/main.cpp" or f.startswith("src/run/") for f in files):
+        continue
+    if not {folder(f) for f in files} & declared.get(n, set()):
+        astray.append(f"-{n}: read in {sorted(files)}, declared in {sorted(declared.get(n, []))}")
+print(f"options declared away from their readers: {astray}")
+check(len(declared) > 80 and not astray, "every option is declared in its reader's folder")
+for t in ("fluid", "solid", "contact", "gap_seal"):
+    check(re.search(rf"^  {t}\s+\S", p.stdout.split("Physics (-physics")[-1], re.M) is not None,
+          f"physics '{t}' listed")
+
 for t in ("noslip", "velocity", "flow_rate", "pressure", "traction_exact", "clamped", "displacement",
           "traction", "follower_pressure"):
     check(re.search(rf"^  {t}\s+\((fluid|solid)\)", p.stdout, re.M) is not None,

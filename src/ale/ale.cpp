@@ -1,5 +1,6 @@
 #include "fsi/ale/ale.hpp"
 #include "fsi/run/stages.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -165,6 +166,63 @@ void Ale::accept() {
   fresh_ = false;
   dn_ = dnp1_;
   Xn_ = Xnp1_;
+}
+
+void Ale::add_to(MonitorRow &row, int geometry_iterations, double geometry_change) const {
+  if (!moving()) return;
+  row.add("mesh_min_jacobian", quality_.min_jacobian);
+  row.add("mesh_max_skewness", quality_.max_skewness);
+  row.add("mesh_min_jacobian_x", quality_.where[0]);
+  row.add("mesh_min_jacobian_y", quality_.where[1]);
+  row.add("mesh_min_jacobian_z", quality_.where[2]);
+  row.add("geometry_iterations", (double)geometry_iterations);
+  row.add("geometry_change", geometry_change);
+  // What the remesh trigger judges: the worst skewness among cells the motion degraded, and with
+  // -ale_remesh_ignore_sealed the same outside the sealed gaps (the one it acts on).
+  if (remeshing()) row.add("mesh_max_degraded_skewness", quality_.max_degraded_skewness);
+  if (remeshing() && ignores_sealed())
+    row.add("mesh_max_degraded_skewness_unsealed", quality_.max_degraded_open);
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection ale_options() {
+  return {
+      "Mesh motion (ALE)",
+      {{"ale_motion", "none", "-",
+        "none | prescribed (verification) | laplace (follows the solid)"},
+       {"ale_amplitude", "0.1", "m", "prescribed: bubble amplitude"},
+       {"ale_time", "1", "s", "prescribed: time over which the amplitude is reached"},
+       {"ale_stiffening", "0", "-", "chi in k = (V_max/V_e)^chi (0 Laplace, 1 Jacobian-stiffened)"},
+       {"ale_slip_boundaries", "", "-", "planes where the mesh slides (inlet/outlet)"},
+       {"ale_geometry_iterations", "0", "-", "0: geometry lagged; N: iterate the mesh in the step"},
+       {"ale_geometry_rtol", "1e-6", "-", "relative mesh change that ends geometry iterations"},
+       {"ale_geometry_monitor", "false", "-",
+        "print each geometry pass's Newton count and mesh change"},
+       {"ale_interface", "", "-",
+        "mass-conservative fluid-solid interface (its physical name); not for thin light "
+        "structures such as leaflets (a two-step sawtooth grows: docs/valve.md)"},
+       {"ale_min_jacobian", "0", "-", "stop when a fluid cell's volume ratio reaches this"},
+       {"ale_max_skewness", "0.99", "-", "stop when a fluid cell's skewness reaches this"},
+       {"ale_remesh_skewness", "0.9", "-",
+        "remesh the fluid when a degraded cell's skewness passes this (0: off)"},
+       {"ale_remesh_skewness_fresh", "0", "-",
+        "raise -ale_remesh_skewness to the current mesh's worst cell, up to this (0: off)"},
+       {"ale_remesh_min_volume_ratio", "0.1", "-",
+        "remesh when a fluid cell is squeezed below this fraction of its volume"},
+       {"ale_remesh_ignore_sealed", "false", "-",
+        "the skewness trigger leaves out cells a gap seal holds shut (a closed valve's hold)"},
+       {"ale_remesh_hmax", "0 (from the boundary)", "m", "largest cell of a new fluid mesh"},
+       {"ale_remesh_every", "0", "steps", "also remesh after every N steps (tests, studies)"},
+       {"ale_remesh_gap_cells", "2", "-",
+        "cells across a fluid gap thinner than its boundary triangles (0: no gap sizing)"},
+       {"ale_remesh_flip_skewness", "0.8", "-",
+        "edge/face flips on new fluid cells worse than this (0: off)"},
+       {"ale_remesh_project", "true", "-",
+        "project the remeshed velocity onto discretely divergence-free fields (false: measure)"},
+       {"ale_remesh_verbose", "0", "-", "1: show gmsh's messages while remeshing"},
+       {"ale_remesh_test_fault", "0", "-",
+        "1: corrupt the boundary given to gmsh; 2: fail on the new mesh (tests)"},
+       {"ale_ksp_*, ale_pc_*", "cg, gamg", "-", "the mesh-motion linear solver"}}};
 }
 
 } // namespace fsi

@@ -1,4 +1,5 @@
 #include "fsi/analytic/analytic.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -189,6 +190,17 @@ Waveform Waveform::from_options(const std::string &prefix) {
                                                    prefix + "expr", 1);
   w.ramp_time = opt::nonnegative(prefix + "ramp", 0);
   return w;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection exact_flow_options() {
+  return {"Verification (exact flows)",
+          {{"exact_solution", "none", "-", "none | ethier_steinman | poiseuille | womersley"},
+           {"exact_G", "", "Pa/m", "poiseuille: pressure gradient"},
+           {"exact_A", "", "Pa/m", "womersley: pressure-gradient amplitude"},
+           {"exact_period", "", "s", "womersley: period"},
+           {"exact_R", "", "m", "pipe radius"},
+           {"exact_L", "0", "m", "pipe length (pressure level)"}}};
 }
 
 } // namespace fsi

@@ -1,4 +1,5 @@
 #include "fsi/analytic/exact_solid.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
@@ -72,6 +73,14 @@ std::unique_ptr<ExactSolid> make_exact_solid() {
   if (opt::choice("exact_displacement", "none", {"none", "manufactured"}) == "none") return nullptr;
   return std::make_unique<ExactSolid>(opt::positive("exact_amplitude", 0.1),
                                       opt::positive("exact_wavenumber", 1.0));
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection exact_solid_options() {
+  return {"Verification (exact solid displacement)",
+          {{"exact_displacement", "none", "-", "none | manufactured (solid)"},
+           {"exact_amplitude", "0.1", "m", "manufactured displacement amplitude"},
+           {"exact_wavenumber", "1", "1/m", "manufactured displacement wavenumber"}}};
 }
 
 } // namespace fsi

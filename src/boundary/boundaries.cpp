@@ -1,4 +1,5 @@
 #include "fsi/boundary/boundaries.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 namespace fsi {
@@ -173,6 +174,47 @@ std::vector<std::vector<PetscInt>> Boundaries::dense_couplings() const {
     if (!b.empty()) blocks.push_back(std::move(b));
   }
   return blocks;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection boundary_options() {
+  return {
+      "Boundary conditions (per boundary <b> in -bc_names)",
+      {{"bc_names", "", "-", "boundaries with a condition; unlisted ones are traction-free"},
+       {"bc_<b>_type", "(required)", "-", "one of the types listed below"},
+       {"bc_<b>_components", "all (Dirichlet types)", "-", "velocity components fixed: x,y,z"},
+       {"bc_<b>_value", "0 (flow_rate, expression: 1)", "m/s | Pa | m | m^3/s",
+        "velocity scale, pressure, traction, displacement or flow rate (into the fluid)"},
+       {"bc_<b>_direction", "flow_rate: inward normal", "-",
+        "direction x,y,z (velocity, flow_rate, displacement, traction)"},
+       {"bc_<b>_profile", "uniform (flow_rate: plug)", "-",
+        "velocity: uniform | parabolic | exact | expression; flow_rate: plug | parabolic | "
+        "expression; displacement: uniform | exact"},
+       {"bc_<b>_expr", "", "m/s",
+        "expression profile in x, y, z, t: 3 values (flow_rate: 1 or 3); "
+        "expression waveform: 1 value in t"},
+       {"bc_<b>_center", "flow_rate: area centroid", "m", "parabolic: a point on the axis"},
+       {"bc_<b>_radius", "flow_rate: farthest vertex", "m", "parabolic: the radius"},
+       {"bc_<b>_stop_backflow_when", "", "-",
+        "flow_rate: COLUMN<VALUE or COLUMN>VALUE of monitor.csv (e.g. contact_pairs>20): the "
+        "backflow stops once it holds (valve closed), until the flow turns forward"},
+       {"bc_<b>_stop_ramp", "0.005", "s", "flow_rate: the stop's smooth ramp to zero"},
+       {"bc_<b>_backflow_beta", "1", "-", "pressure, windkessel: backflow stabilisation (0 off)"},
+       {"bc_<b>_R_p", "(required)", "Pa s/m^3", "windkessel: proximal resistance"},
+       {"bc_<b>_C", "(required)", "m^3/Pa", "windkessel: compliance"},
+       {"bc_<b>_R_d", "(required)", "Pa s/m^3", "windkessel: distal resistance"},
+       {"bc_<b>_p_distal", "0", "Pa", "windkessel: distal (venous) pressure"},
+       {"bc_<b>_p0", "p_distal", "Pa", "windkessel: initial capacitor pressure"},
+       {"bc_<b>_jacobian", "auto", "-",
+        "windkessel: full (dense outlet block), lagged, auto (full up to 3000 dofs)"},
+       {"bc_<b>_waveform", "constant", "-",
+        "constant | step | pulse | cosine | sine | linear | table | expression"},
+       {"bc_<b>_table", "", "-", "table: file of 't value' rows, linear interpolation"},
+       {"bc_<b>_periodic", "false", "-", "table: repeat with period t_last - t_first"},
+       {"bc_<b>_t_off", "", "s", "step, pulse: end time"},
+       {"bc_<b>_period", "", "s", "cosine, sine, linear: period"},
+       {"bc_<b>_offset", "0", "-", "cosine, sine: offset + cos(2 pi t / period)"},
+       {"bc_<b>_ramp", "0", "s", "smooth start over this time"}}};
 }
 
 } // namespace fsi

@@ -1,4 +1,8 @@
 #include "fsi/physics/contact.hpp"
+#include "fsi/physics/fluid.hpp"
+#include "fsi/physics/physics_registry.hpp"
+#include "fsi/physics/solid.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
@@ -298,6 +302,71 @@ void ContactModule::add_jacobian(const StepContext &ctx, Mat J) {
       FSI_CALL(MatSetValues(J, 3, rows, nc, cols, packed, ADD_VALUES));
     }
   });
+}
+
+void ContactModule::add_to(MonitorRow &row) const {
+  row.add("contact_pairs", (double)stats_.active_pairs);
+  row.add("contact_max_penetration", stats_.max_penetration);
+  row.add("contact_force", stats_.force);
+  if (!p_.walls.empty()) {
+    row.add("contact_wall_pairs", (double)stats_.wall_pairs);
+    row.add("contact_wall_min_gap", stats_.wall_min_gap);
+  }
+  if (p_.axis.on()) {
+    row.add("contact_axis_pairs", (double)stats_.axis_pairs);
+    row.add("contact_axis_min_distance", stats_.axis_min_distance);
+  }
+}
+
+// Leaflets touching: a penalty between the pieces of the solid's surface, optionally against
+// rigid fluid walls and an axis rod.
+void make_contact(PhysicsBuild &b) {
+  const ContactParams &cp = b.contact_params();
+  auto surface = b.contact_surface();
+  std::shared_ptr<ContactWall> wall;
+  if (!cp.walls.empty()) {
+    if (!b.fluid)
+      throw InputError("-contact_walls needs a fluid: the walls are fluid boundary groups");
+    b.mesh.require_groups(cp.walls, "the rigid contact walls (-contact_walls)");
+    wall = std::make_shared<ContactWall>(b.space, b.mesh, cp.walls, b.fluid->cells(),
+                                         std::max(cp.wall_exclude, 3 * cp.wall_offset));
+  }
+  auto c = std::make_unique<ContactModule>(surface, cp, wall);
+  // With a fluid between them, pieces closer than the offset at rest would be pushed apart
+  // through the fluid at the first step: the offset is the gap touching pieces keep, it must
+  // fit in the mesh's.  (A solid alone may start pressed: a preloaded contact.)
+  const double g = b.fluid ? c->smallest_gap(2 * cp.offset) : 2 * cp.offset;
+  if (g <= cp.offset)
+    throw InputError("-contact_offset " + std::to_string(cp.offset) +
+                     " m is not below the smallest gap between the contact pieces of the "
+                     "mesh as built (" +
+                     std::to_string(g) +
+                     " m): at rest they would be pushed apart; use a smaller offset or "
+                     "mesh a wider gap (valve.geo: gap)");
+  b.contact = c.get();
+  b.modules.push_back(std::move(c));
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection contact_options() {
+  return {
+      "Contact between solid pieces (-physics contact; its surface and rod also serve gap_seal)",
+      {{"contact_surface", "interface", "-", "boundary group of the solid's contact surface"},
+       {"contact_offset", "(required)", "m", "gap the pieces keep (penalty acts below it)"},
+       {"contact_penalty", "1e8", "Pa/m", "contact pressure per metre of penetration"},
+       {"contact_ramp", "offset/4", "m", "width over which the contact pressure ramps in"},
+       {"contact_pattern_margin", "offset", "m",
+        "pairs this much beyond the offset are kept in the Jacobian's pattern"},
+       {"contact_walls", "(none)", "-",
+        "rigid fluid boundary groups the contact surface keeps away from, e.g. root_wall"},
+       {"contact_wall_offset", "offset", "m", "gap the surface keeps from the walls"},
+       {"contact_wall_exclude", "2 wall_offset", "m",
+        "surface nodes this close to a wall in the reference shape (attachment) take no wall "
+        "contact"},
+       {"contact_axis_radius", "0 (none)", "m",
+        "a virtual rigid rod of this radius along the axis: the surface keeps it from the "
+        "line (the fluid where three leaflets meet), and the gap seal counts it as a piece"},
+       {"contact_axis", "0,0,0,0,0,1", "m,-", "the rod's axis: a point X,Y,Z and a direction"}}};
 }
 
 } // namespace fsi

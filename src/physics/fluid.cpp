@@ -1,4 +1,6 @@
 #include "fsi/physics/fluid.hpp"
+#include "fsi/physics/physics_registry.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -330,6 +332,28 @@ void FluidModule::pressure_operators(const StepContext &ctx, size_t c, double ml
       F[a][b] = (a == b ? p_.rho * cm * ml[a] : 0.0) + cf * (p_.mu * L + p_.rho * N);
     }
   }
+}
+
+void make_fluid(PhysicsBuild &b) {
+  auto f = std::make_unique<FluidModule>(b.space, b.mesh, FluidParams::from_options());
+  b.fluid = f.get();
+  b.modules.push_back(std::move(f));
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection fluid_options() {
+  return {
+      "Fluid (-physics fluid)",
+      {{"fluid_region", "fluid", "-", "physical volume of the fluid"},
+       {"fluid_rho", "1000", "kg/m^3", "density"},
+       {"fluid_mu", "0.003", "Pa s", "dynamic viscosity"},
+       {"fluid_model", "navier_stokes", "-", "navier_stokes | stokes (no convection)"},
+       {"fluid_convection", "convective", "-",
+        "convective | skew_symmetric (+ rho/2 (div v) v: energy-stable convection)"},
+       {"fluid_grad_div", "0", "Pa s",
+        "grad-div penalty gamma (div v, div w): local mass conservation of the P2/P1 velocity"},
+       {"fluid_quad_degree", "4", "-", "quadrature degree"},
+       {"fluid_direct_insertion", "true", "-", "element matrices straight into the AIJ arrays"}}};
 }
 
 } // namespace fsi

@@ -1,5 +1,8 @@
 #include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/contact_geometry.hpp"
+#include "fsi/physics/fluid.hpp"
+#include "fsi/physics/physics_registry.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -160,6 +163,31 @@ void GapSeal::add_jacobian(const StepContext &ctx, Mat J) {
       }
     FSI_CALL(MatSetValuesLocal(J, 30, rows, 30, cols, &K[0][0], ADD_VALUES));
   }
+}
+
+void GapSeal::add_to(MonitorRow &row) const {
+  row.add("seal_cells", (double)stats_.sealing_cells);
+  row.add("seal_max_alpha", stats_.max_alpha);
+}
+
+// A resistance that seals the fluid in the gaps between the contact surface's pieces.
+void make_gap_seal(PhysicsBuild &b) {
+  const ContactParams &cp = b.contact_params();
+  auto g = std::make_unique<GapSeal>(b.space, b.fluid->cells(), b.contact_surface(),
+                                     GapSealParams::from_options(cp.offset, cp.axis));
+  b.seal = g.get();
+  b.modules.push_back(std::move(g));
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection gap_seal_options() {
+  return {
+      "Gap seal (-physics gap_seal)",
+      {{"gap_seal_resistance", "1e8", "Pa s/m^2", "Brinkman resistance of a closed gap"},
+       {"gap_seal_gap_closed", "1.25 offset", "m", "gap width at full resistance"},
+       {"gap_seal_gap_open", "2 offset", "m", "gap width where the resistance starts"},
+       {"gap_seal_ramp_time", "0", "s",
+        "time lag of the resistance (0: none); the lag starts afresh after a remesh or restart"}}};
 }
 
 } // namespace fsi

@@ -1,4 +1,7 @@
 #include "fsi/physics/solid.hpp"
+#include "fsi/physics/material.hpp"
+#include "fsi/physics/physics_registry.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cstring>
@@ -261,6 +264,47 @@ SolidEnergy SolidModule::energy(const PetscScalar *V, const PetscScalar *D) cons
   e.kinetic = glob[0];
   e.strain = glob[1];
   return e;
+}
+
+void make_solid(PhysicsBuild &b) {
+  b.exact_solid = make_exact_solid();
+  auto s = std::make_unique<SolidModule>(b.space, b.mesh, b.material_X, SolidParams::from_options(),
+                                         make_material(), b.exact_solid.get());
+  b.solid = s.get();
+  b.modules.push_back(std::move(s));
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection solid_options() {
+  return {
+      "Solid (-physics solid)",
+      {{"solid_region", "solid", "-", "physical volume of the solid"},
+       {"solid_rho", "1000", "kg/m^3", "reference density"},
+       {"solid_gravity", "0,0,0", "m/s^2", "body acceleration gx,gy,gz"},
+       {"solid_gravity_waveform", "constant (steady: linear over ts_max_time)", "-",
+        "gravity's time dependence; its _period, _ramp, ... as for bc_<b>_"},
+       {"solid_material", "linear", "-", "linear | svk | neo_hookean | mooney_rivlin"},
+       {"solid_E", "(required: linear, svk)", "Pa", "Young's modulus"},
+       {"solid_nu", "0.3", "-", "Poisson's ratio"},
+       {"solid_mu", "(neo_hookean)", "Pa", "shear modulus"},
+       {"solid_kappa", "(neo_hookean, mooney_rivlin)", "Pa", "bulk modulus"},
+       {"solid_C10", "(mooney_rivlin)", "Pa", "Mooney-Rivlin C10"},
+       {"solid_C01", "0", "Pa", "Mooney-Rivlin C01"},
+       {"solid_exp_c1", "0", "Pa",
+        "neo_hookean/mooney_rivlin + c1/2 (exp(c2 (I1bar-3)^2) - 1): collagen-like stiffening"},
+       {"solid_exp_c2", "0", "-", "exponent c2 of that term (both 0 or both positive)"},
+       {"solid_fibres", "none", "-",
+        "none | circumferential | chord: a fibre family c1/2 (exp(c2 (I4-1)^2) - 1), I4 > 1, "
+        "about "
+        "the z axis"},
+       {"solid_fibre_c1", "(with solid_fibres)", "Pa", "fibre modulus c1"},
+       {"solid_fibre_c2", "(with solid_fibres)", "-", "fibre exponent c2"},
+       {"solid_fibre_tension_only", "true", "-",
+        "fibres carry no compression (I4 < 1); false: the same law on both sides"},
+       {"solid_fibre_commissures", "(chord)", "deg",
+        "commissure angles about z; fibres run along the chord of each sector between them"},
+       {"solid_quad_degree", "3", "-", "quadrature degree (3: 8 points, 4: 14, 2: 4)"},
+       {"solid_direct_insertion", "true", "-", "element matrices straight into the AIJ arrays"}}};
 }
 
 } // namespace fsi

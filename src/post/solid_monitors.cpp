@@ -1,5 +1,5 @@
 #include "fsi/post/solid_monitors.hpp"
-#include "fsi/run/simulation.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
@@ -37,18 +37,13 @@ std::vector<std::string> SolidMonitors::columns() const {
   return c;
 }
 
-std::vector<double> SolidMonitors::evaluate(const Simulation &pb) {
+std::vector<double> SolidMonitors::evaluate(const FieldView &view) {
   std::vector<double> out;
   if (!solid_) return out;
   MPI_Comm comm = PetscObjectComm((PetscObject)space_->dm);
   int rank;
   MPI_Comm_rank(comm, &rank);
-  Vec dloc = space_->create_local(), vloc = space_->create_local();
-  pb.displacement_local(dloc);
-  pb.solution_local(vloc);
-  const PetscScalar *D, *V;
-  FSI_CALL(VecGetArrayRead(dloc, &D));
-  FSI_CALL(VecGetArrayRead(vloc, &V));
+  const PetscScalar *D = view.d, *V = view.u;
   for (auto &p : probes_) {
     double val[3] = {}, g[3];
     if (p.owner == rank) {
@@ -83,7 +78,7 @@ std::vector<double> SolidMonitors::evaluate(const Simulation &pb) {
         for (int a = 0; a < 10; ++a)
           for (int d = 0; d < 3; ++d)
             uh[d] += N[a] * PetscRealPart(D[space_->cell_vdof[10 * k + a] + d]);
-        exact_->displacement(x, pb.time(), ue);
+        exact_->displacement(x, view.t, ue);
         const double w = rule.weight[q] * g.absdet;
         for (int d = 0; d < 3; ++d) {
           acc[0] += w * (uh[d] - ue[d]) * (uh[d] - ue[d]);
@@ -96,11 +91,28 @@ std::vector<double> SolidMonitors::evaluate(const Simulation &pb) {
     err_rel_ = err_ / std::max(std::sqrt(glob[1]), 1e-300);
     out.insert(out.end(), {err_, err_rel_});
   }
-  FSI_CALL(VecRestoreArrayRead(dloc, &D));
-  FSI_CALL(VecRestoreArrayRead(vloc, &V));
-  FSI_CALL(VecDestroy(&dloc));
-  FSI_CALL(VecDestroy(&vloc));
   return out;
+}
+
+void SolidMonitors::summarize(Json &j, bool stepped) const {
+  if (!exact_ || !stepped) return;
+  Json err;
+  err.set("displacement_l2", err_).set("displacement_l2_relative", err_rel_);
+  j.set("error_final", err);
+}
+
+std::unique_ptr<Monitor> make_solid_monitors(const MonitorSetup &m) {
+  auto s = std::make_unique<SolidMonitors>();
+  s->setup(m.space, m.solid, m.exact_solid);
+  if (!s->active()) return nullptr;
+  return s;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection solid_monitor_options() {
+  return {"Solid monitors",
+          {{"solid_probe_points", "", "m", "solid displacement probes at material points"},
+           {"monitor_solid_energy", "false", "-", "kinetic and stored energy of the solid"}}};
 }
 
 } // namespace fsi

@@ -1,6 +1,6 @@
 #include "fsi/post/valve_monitors.hpp"
 #include "fsi/boundary/boundary_condition.hpp"
-#include "fsi/run/simulation.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -9,10 +9,11 @@
 namespace fsi {
 
 void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const SolidModule *solid,
-                          double touching_gap) {
+                          ContactModule *contact) {
   active_ = opt::has("valve_annulus_radius");
   if (!active_) return;
-  touching_gap_ = touching_gap;
+  contact_ = contact;
+  touching_gap_ = contact ? contact->params().offset : 0.0;
   space_ = &space;
   solid_ = solid;
   fluid_ = fluid;
@@ -234,16 +235,20 @@ std::array<double, 2> ValveMonitors::orifice_area(const std::vector<double> &x) 
   return {open * hpix * hpix, open_grown * hpix * hpix};
 }
 
-std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
+void ValveMonitors::add_to(MonitorRow &row, const FieldView &view) {
+  row.add(columns(), [&] { return evaluate(view); });
+  // The seams of a valve of two or three leaflets.
+  const int pieces = contact_ ? contact_->n_pieces() : 0;
+  if (pieces == 2 || pieces == 3)
+    row.add({"valve_coaptation_height", "valve_coaptation_length"},
+            [&] { return coaptation(contact_->touching(), pieces); });
+}
+
+std::vector<double> ValveMonitors::evaluate(const FieldView &view) {
   if (!active_) return {};
-  Vec uloc = space_->create_local(), dloc = space_->create_local();
-  pb.solution_local(uloc);
-  pb.displacement_local(dloc);
-  const PetscScalar *u, *D;
-  FSI_CALL(VecGetArrayRead(uloc, &u));
-  FSI_CALL(VecGetArrayRead(dloc, &D));
+  const PetscScalar *u = view.u, *D = view.d;
   const double pu = plane_mean_pressure(up_, u), pd = plane_mean_pressure(down_, u);
-  const std::array<double, 2> vpeak = peak_velocity(u, pb.coordinates());
+  const std::array<double, 2> vpeak = peak_velocity(u, *view.x);
 
   // Deformed leaflet vertices, the largest displacement and the largest von Mises stress (at the
   // cell centres: P2 displacement, linear stress).
@@ -297,14 +302,29 @@ std::vector<double> ValveMonitors::evaluate(const Simulation &pb) {
   MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_MAX, comm_);
   const std::array<double, 2> goa = orifice_area(x);
   const double disc = M_PI * R_ * R_;
-  FSI_CALL(VecRestoreArrayRead(uloc, &u));
-  FSI_CALL(VecRestoreArrayRead(dloc, &D));
-  FSI_CALL(VecDestroy(&uloc));
-  FSI_CALL(VecDestroy(&dloc));
   std::vector<double> v = {pu,      pd,      pu - pd,  goa[0],  goa[0] / disc,
                            glob[0], glob[1], vpeak[0], vpeak[1]};
   if (touching_gap_ > 0) v.push_back(goa[1] / disc);
   return v;
+}
+
+std::unique_ptr<Monitor> make_valve_monitors(const MonitorSetup &m) {
+  auto v = std::make_unique<ValveMonitors>();
+  v->setup(m.space, m.fluid, m.solid, m.contact);
+  if (!v->active()) return nullptr;
+  return v;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection valve_monitor_options() {
+  return {"Valve monitors",
+          {{"valve_annulus_radius", "", "m",
+            "valve monitors on: dp, orifice area, leaflet u and stress"},
+           {"valve_center", "0,0,0", "m", "annulus centre"},
+           {"valve_axis", "0,0,1", "-", "valve axis (flow direction)"},
+           {"valve_dp_planes", "", "m", "axial positions a < 0 < b of the pressure discs"},
+           {"valve_dp_radius", "0.8 R", "m", "radius of the pressure discs"},
+           {"valve_goa_pixels", "400", "-", "orifice-area raster size per side"}}};
 }
 
 } // namespace fsi

@@ -1,5 +1,5 @@
 #include "fsi/post/wall_shear.hpp"
-#include "fsi/run/simulation.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -95,8 +95,9 @@ std::vector<std::string> WallShear::columns() const {
 }
 
 // tau_w at every face centroid of s on the current configuration.
-void WallShear::compute(Surface &s, const Simulation &pb, const PetscScalar *u) {
-  const auto &Xc = pb.coordinates();
+void WallShear::compute(Surface &s, const FieldView &view) {
+  const auto &Xc = *view.x;
+  const PetscScalar *u = view.u;
   const double mu = fluid_->params().mu;
   s.xf.resize(9 * s.faces.size());
   for (size_t i = 0; i < s.faces.size(); ++i) {
@@ -132,19 +133,13 @@ void WallShear::compute(Surface &s, const Simulation &pb, const PetscScalar *u) 
   }
 }
 
-void WallShear::update(const Simulation &pb, double dt) {
+void WallShear::update(const FieldView &view, double dt) {
   if (!active()) return;
   values_.clear();
-  const double t = pb.time();
+  const double t = view.t;
   const bool in_window = t > start_ + 1e-12 * window_;
-  Vec loc = space_->create_local(); // the solution with ghosts, once for all surfaces
-  pb.solution_local(loc);
-  const PetscScalar *u;
-  FSI_CALL(VecGetArrayRead(loc, &u));
   for (auto &s : surf_)
-    compute(s, pb, u);
-  FSI_CALL(VecRestoreArrayRead(loc, &u));
-  FSI_CALL(VecDestroy(&loc));
+    compute(s, view);
   for (auto &s : surf_) {
     // area-weighted mean and max of |tau|; exact comparison at the face centroids
     double loc[4] = {0, 0, 0, 0}, mx = 0, glob[4], gmx;
@@ -164,7 +159,7 @@ void WallShear::update(const Simulation &pb, double dt) {
         for (int j = 0; j < 3; ++j)
           for (int d = 0; d < 3; ++d)
             x[d] += s.xf[9 * i + 3 * j + d] / 3;
-        outward_normal(s.faces[i], pb.coordinates().data(), n);
+        outward_normal(s.faces[i], view.x->data(), n);
         exact_->stress(x, t, fluid_->params().mu, S);
         for (int c = 0; c < 3; ++c) {
           te[c] = S[c][0] * n[0] + S[c][1] * n[1] + S[c][2] * n[2];
@@ -248,7 +243,7 @@ void WallShear::close_window() {
   ++window_index_;
 }
 
-void WallShear::write_instantaneous(long step, double t) {
+void WallShear::write(long step, double t) {
   if (!active()) return;
   const std::string g = "step_" + std::to_string(step);
   for (auto &s : surf_) {
@@ -339,11 +334,18 @@ void WallShear::write_xdmf() const {
   if (!x) throw OutputError("cannot write " + dir_ + "/" + base_ + ".xdmf (disk full?)");
 }
 
-Json WallShear::summary() const {
+void WallShear::summarize(Json &out, bool) const {
   Json j;
   for (auto &s : surf_)
     j.set(s.name, s.last_window);
-  return j;
+  out.set("hemodynamics", j);
+}
+
+std::unique_ptr<Monitor> make_wall_shear(const MonitorSetup &m) {
+  auto w = std::make_unique<WallShear>();
+  w->setup(m.mesh, m.space, m.fluid, m.exact, m.out_dir, m.t_end, m.hemo_base, m.material_X);
+  if (!w->active()) return nullptr;
+  return w;
 }
 
 void WallShear::save(RunState &st) const {
@@ -376,6 +378,14 @@ void WallShear::load(const RunState &st) {
   window_start_ = st.hemo_window[0];
   window_time_ = st.hemo_window[1];
   window_index_ = std::lround(st.hemo_window[2]);
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection wall_shear_options() {
+  return {"Wall shear and hemodynamics",
+          {{"hemo_surfaces", "", "-", "walls for wall shear stress, TAWSS, OSI, RRT"},
+           {"hemo_window", "0 (the whole run)", "s", "averaging window"},
+           {"hemo_start", "0", "s", "start of the first window"}}};
 }
 
 } // namespace fsi

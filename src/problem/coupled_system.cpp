@@ -1,6 +1,7 @@
 #include "fsi/problem/coupled_system.hpp"
 #include "fsi/discretization/sparsity.hpp"
 #include "fsi/run/stages.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 #include "fsi/solver/schur_bilu.hpp"
 
@@ -369,6 +370,30 @@ void CoupledSystem::jacobian(Vec U, Mat J) {
     FSI_CALL(SNESGetKSP(snes_, &ksp));
     split_->configure(ksp, J_);
   }
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection solver_options() {
+  return {
+      "Solver (PETSc; presets in petsc_options/)",
+      {{"solver_preset", "(the scene's)", "-",
+        "NAME: petsc_options/NAME.opts (or a path ending in .opts) sets every solver option "
+        "the scene and command line leave unset; the last one given wins"},
+       {"snes_*, ksp_*, pc_*", "PETSc's", "-", "Newton and linear solver of the coupled system"},
+       {"fieldsplit_velocity_pc_type", "", "-", "fieldsplit: split velocity into fluid | solid"},
+       {"fieldsplit_pressure_pc_type", "", "-", "pcd: convection-aware Schur preconditioner"},
+       {"pc_schur_bilu_precision", "single", "-",
+        "-pc_type schur_bilu (Schur + block ILU, no block copies): velocity factor storage"},
+       {"schur_*", "hypre", "-", "schur_bilu's Sp preconditioner (-schur_pc_type, ...)"},
+       {"jac_*", "", "-", "options of the Jacobian matrix (prefix jac_)"},
+       {"newton_inexact_gamma", "0 (off)", "-",
+        "linear solves only to gamma x the Newton target (|F0| snes_rtol), >= ksp_rtol"},
+       {"newton_pc_rebuild_krylov", "0 (off)", "-",
+        "a lagged preconditioner is rebuilt when a linear solve took more Krylov iterations"},
+       {"sim_pattern_rebuild_every", "0", "solves",
+        "rebuild the Jacobian's nonzero pattern every N solves (checks the rebuild path)"},
+       {"test_fault_residual", "0", "-",
+        "N: the N-th residual evaluation meets an inverted solid element on rank 0 (tests)"}}};
 }
 
 } // namespace fsi

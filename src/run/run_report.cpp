@@ -214,23 +214,8 @@ void RunReport::write(const Output &out, const Mesh &mesh, const Simulation &sim
     j.set("restarted_from", r);
   }
   if (!checkpoint.empty()) j.set("checkpoint", checkpoint);
-  if (sim.wall_shear().active()) j.set("hemodynamics", sim.wall_shear().summary());
-  if (sim.monitors().has_exact() && steps_ > 0) {
-    const ErrorNorms &e = sim.monitors().last_errors();
-    Json err;
-    err.set("velocity_l2", e.v_l2)
-        .set("pressure_l2", e.p_l2)
-        .set("divergence_l2", e.div_l2)
-        .set("velocity_l2_relative", e.v_l2 / e.v_norm)
-        .set("pressure_l2_relative", e.p_l2 / e.p_norm);
-    j.set("error_final", err);
-  }
-  if (sim.solid_monitors().has_exact() && steps_ > 0) {
-    Json err;
-    err.set("displacement_l2", sim.solid_monitors().error_l2())
-        .set("displacement_l2_relative", sim.solid_monitors().error_relative());
-    j.set("error_final", err);
-  }
+  for (auto &m : sim.monitors()) // error_final, hemodynamics
+    m->summarize(j, steps_ > 0);
   if (steps_ > 0) {
     Json m;
     for (size_t k = 0; k < min_.size() && k < names_.size(); ++k) {

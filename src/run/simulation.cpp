@@ -1,9 +1,12 @@
 #include "fsi/run/simulation.hpp"
+#include "fsi/scene/option_doc.hpp"
 
+#include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/interface_flux.hpp"
-#include "fsi/physics/material.hpp"
+#include "fsi/physics/physics_registry.hpp"
 #include "fsi/scene/options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -15,30 +18,13 @@ Scene Scene::from_options() {
   s.physics = opt::list("physics");
   if (s.physics.empty())
     throw InputError("the scene switches no physics on: give -physics fluid, solid or both");
-  for (auto &p : s.physics) {
-    if (p == "fluid")
-      s.fluid = true;
-    else if (p == "solid")
-      s.solid = true;
-    else if (p == "contact")
-      s.contact = true;
-    else if (p == "gap_seal")
-      s.gap_seal = true;
-    else if (p == "ale")
-      throw InputError("-physics ale is not a physics: the mesh motion is chosen by -ale_motion "
-                       "none|prescribed|laplace");
-    else
-      throw InputError("-physics has unknown value '" + p +
-                       "'; use: fluid, solid, contact, gap_seal");
-  }
-  if (s.contact && !s.solid)
-    throw InputError(
-        "-physics contact needs the solid: -physics solid,contact (or fluid,solid,contact)");
-  if (s.gap_seal && !(s.fluid && s.solid))
-    throw InputError(
-        "-physics gap_seal needs the fluid and the solid: -physics fluid,solid,contact,gap_seal");
+  check_physics(s.physics);
   s.time = TimeParams::from_options();
   return s;
+}
+
+bool Scene::has(const std::string &p) const {
+  return std::find(physics.begin(), physics.end(), p) != physics.end();
 }
 
 std::string Scene::tag() const {
@@ -73,7 +59,8 @@ Simulation::Simulation(const Mesh &mesh, const Scene &scene, const OutputNames &
     keys_->dofs(*state, {time_->velocity(), time_->acceleration(), time_->displacement()});
     ale_->restore(dn);
     FSI_CALL(VecCopy(time_->velocity(), U_));
-    wss_.load(*state);
+    for (auto &m : monitors_)
+      m->load(*state);
     bcs_->restore_state(state->lumped);
     auto sw = state->lumped.find("rho_inf_switched");
     if (rho_switch_ && sw != state->lumped.end() && sw->second != 0)
@@ -93,70 +80,25 @@ Simulation::~Simulation() {
 void Simulation::build_physics(const Mesh &mesh) {
   time_ = std::make_unique<GeneralizedAlpha>(space_, scene_.time);
   system_ = std::make_unique<CoupledSystem>(space_);
-  if (scene_.fluid) {
-    auto f = std::make_unique<FluidModule>(space_, mesh, FluidParams::from_options());
-    fluid_ = f.get();
-    exact_ = make_exact_flow(fluid_->params().rho, fluid_->params().mu);
-    system_->add_module(std::move(f));
-  }
-  if (scene_.solid) {
-    exact_solid_ = make_exact_solid();
-    auto s = std::make_unique<SolidModule>(space_, mesh, material_X_, SolidParams::from_options(),
-                                           make_material(), exact_solid_.get());
-    solid_ = s.get();
-    system_->add_module(std::move(s));
-  }
-  if (scene_.contact || scene_.gap_seal) {
-    // Leaflets touching: a penalty between the pieces of the solid's surface (contact.hpp) and
-    // a resistance that seals the fluid gap between them (gap_seal.hpp).
-    const ContactParams cp = ContactParams::from_options();
-    mesh.require_groups({cp.surface}, "the contact surface (-contact_surface)");
-    auto surface =
-        std::make_shared<ContactSurface>(space_, mesh, cp.surface, solid_->cells(), material_X_);
-    if (surface->n_components() < 2)
-      throw InputError("the contact surface '" + cp.surface + "' has " +
-                       std::to_string(surface->n_components()) +
-                       " connected piece(s): contact acts between pieces (no self-contact), so "
-                       "it needs at least 2; check -contact_surface");
-    if (scene_.contact) {
-      std::shared_ptr<ContactWall> wall;
-      if (!cp.walls.empty()) {
-        if (!fluid_)
-          throw InputError("-contact_walls needs a fluid: the walls are fluid boundary groups");
-        mesh.require_groups(cp.walls, "the rigid contact walls (-contact_walls)");
-        wall = std::make_shared<ContactWall>(space_, mesh, cp.walls, fluid_->cells(),
-                                             std::max(cp.wall_exclude, 3 * cp.wall_offset));
-      }
-      auto c = std::make_unique<ContactModule>(surface, cp, wall);
-      // With a fluid between them, pieces closer than the offset at rest would be pushed apart
-      // through the fluid at the first step: the offset is the gap touching pieces keep, it must
-      // fit in the mesh's.  (A solid alone may start pressed: a preloaded contact.)
-      const double g = fluid_ ? c->smallest_gap(2 * cp.offset) : 2 * cp.offset;
-      if (g <= cp.offset)
-        throw InputError("-contact_offset " + std::to_string(cp.offset) +
-                         " m is not below the smallest gap between the contact pieces of the "
-                         "mesh as built (" +
-                         std::to_string(g) +
-                         " m): at rest they would be pushed apart; use a smaller offset or "
-                         "mesh a wider gap (valve.geo: gap)");
-      contact_ = c.get();
-      system_->add_module(std::move(c));
-    }
-    if (scene_.gap_seal) {
-      auto g = std::make_unique<GapSeal>(space_, fluid_->cells(), surface,
-                                         GapSealParams::from_options(cp.offset, cp.axis));
-      seal_ = g.get();
-      system_->add_module(std::move(g));
-    }
-  }
+  // The physics switched on, in the registry's order (each finds what it needs built).
+  PhysicsBuild built(mesh, space_, material_X_);
+  for (auto &t : physics_types())
+    if (scene_.has(t.name)) t.make(built);
+  fluid_ = built.fluid;
+  solid_ = built.solid;
+  const GapSeal *seal = built.seal;
+  exact_solid_ = std::move(built.exact_solid);
+  if (fluid_) exact_ = make_exact_flow(fluid_->params().rho, fluid_->params().mu);
+  for (auto &m : built.modules)
+    system_->add_module(std::move(m));
   const std::vector<PetscInt> *fluid_cells = fluid_ ? &fluid_->cells() : nullptr;
   ale_ = std::make_unique<Ale>(space_, make_mesh_motion(mesh, space_, fluid_cells, material_X_),
                                fluid_cells);
-  if (ale_->ignores_sealed() && !seal_)
+  if (ale_->ignores_sealed() && !seal)
     throw InputError("-ale_remesh_ignore_sealed needs the gap seal: -physics "
                      "fluid,solid,contact,gap_seal (or drop the option)");
-  if (seal_)
-    ale_->set_sealed([seal = seal_](std::vector<char> &sealed) {
+  if (seal)
+    ale_->set_sealed([seal](std::vector<char> &sealed) {
       sealed.resize(seal->cells().size()); // the fluid's cells, in their order
       for (size_t c = 0; c < sealed.size(); ++c)
         sealed[c] = seal->sealed(c);
@@ -178,11 +120,19 @@ void Simulation::build_physics(const Mesh &mesh) {
   if (PcdOperators::requested(fluid_ != nullptr))
     system_->set_pcd(std::make_unique<PcdOperators>(space_, mesh, *fluid_, *bcs_));
   system_->setup_solver();
-  mon_.setup(mesh, space_, fluid_, exact_.get());
-  smon_.setup(space_, solid_, exact_solid_.get());
-  valve_.setup(space_, fluid_, solid_, contact_ ? contact_->params().offset : 0.0);
-  wss_.setup(mesh, space_, fluid_, exact_.get(), out_.dir, scene_.time.t_end, out_.hemo,
-             material_X_);
+  const MonitorSetup ms{mesh,
+                        space_,
+                        fluid_,
+                        solid_,
+                        built.contact,
+                        exact_.get(),
+                        exact_solid_.get(),
+                        out_.dir,
+                        out_.hemo,
+                        scene_.time.t_end,
+                        material_X_};
+  for (auto &t : monitor_types())
+    if (auto m = t.make(ms)) monitors_.push_back(std::move(m));
   if (out_.fields_every > 0) {
     FieldSet set;
     set.pressure = fluid_ != nullptr;
@@ -424,72 +374,49 @@ StepStats Simulation::step(const StepErrorTolerance *tol) {
 
 // Every monitor value of a step under its column's name; with `s` null, the names only (the
 // columns, before any step).  Sources add in this order: monitor.csv's column order.
-void Simulation::monitor_row(MonitorRow &row, const StepStats *s) {
-  row.add(mon_.columns(), [&] { return mon_.evaluate(*this); });
-  row.add(smon_.columns(), [&] { return smon_.evaluate(*this); });
-  row.add(valve_.columns(), [&] { return valve_.evaluate(*this); });
-  row.add(wss_.columns(), [&] { return wss_.values(); });
+void Simulation::monitor_row(MonitorRow &row, const StepStats *s, const FieldView &view) {
+  for (auto &m : monitors_)
+    m->add_to(row, view);
   row.add(bcs_->monitor_columns(), [&] { return bcs_->monitor_values(); });
-  if (contact_) {
-    const auto &c = contact_->stats();
-    row.add("contact_pairs", (double)c.active_pairs);
-    row.add("contact_max_penetration", c.max_penetration);
-    row.add("contact_force", c.force);
-    if (!contact_->params().walls.empty()) {
-      row.add("contact_wall_pairs", (double)c.wall_pairs);
-      row.add("contact_wall_min_gap", c.wall_min_gap);
-    }
-    if (contact_->params().axis.on()) {
-      row.add("contact_axis_pairs", (double)c.axis_pairs);
-      row.add("contact_axis_min_distance", c.axis_min_distance);
-    }
-    const int pieces = contact_->n_pieces();
-    if (valve_.active() && (pieces == 2 || pieces == 3))
-      row.add(ValveMonitors::coaptation_columns(),
-              [&] { return valve_.coaptation(contact_->touching(), pieces); });
-  }
-  if (seal_) {
-    row.add("seal_cells", (double)seal_->stats().sealing_cells);
-    row.add("seal_max_alpha", seal_->stats().max_alpha);
-  }
-  if (ale_->moving()) {
-    const auto &q = ale_->quality();
-    row.add("mesh_min_jacobian", q.min_jacobian);
-    row.add("mesh_max_skewness", q.max_skewness);
-    row.add("mesh_min_jacobian_x", q.where[0]);
-    row.add("mesh_min_jacobian_y", q.where[1]);
-    row.add("mesh_min_jacobian_z", q.where[2]);
-    row.add("geometry_iterations", s ? (double)s->geometry_iterations : 0.0);
-    row.add("geometry_change", s ? s->geometry_change : 0.0);
-  }
-  // What the remesh trigger judges: the worst skewness among cells the motion degraded, and with
-  // -ale_remesh_ignore_sealed the same outside the sealed gaps (the one it acts on).
-  if (ale_->remeshing())
-    row.add("mesh_max_degraded_skewness", ale_->quality().max_degraded_skewness);
-  if (ale_->remeshing() && ale_->ignores_sealed())
-    row.add("mesh_max_degraded_skewness_unsealed", ale_->quality().max_degraded_open);
+  for (auto &m : system_->modules())
+    m->add_to(row);
+  ale_->add_to(row, s ? s->geometry_iterations : 0, s ? s->geometry_change : 0.0);
 }
 
 std::vector<std::string> Simulation::monitor_columns() {
   MonitorRow row(MonitorRow::names_only);
-  monitor_row(row, nullptr);
+  monitor_row(row, nullptr, FieldView{});
   return row.names();
 }
 
 std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
-  wss_.update(*this, dt);
+  // The view the monitors read: the fields with ghosts, the mesh, the time.
+  Vec uloc = space_.create_local(), dloc = space_.create_local();
+  space_.to_local(U_, uloc);
+  space_.to_local(time_->displacement(), dloc);
+  FieldView view;
+  FSI_CALL(VecGetArrayRead(uloc, &view.u));
+  FSI_CALL(VecGetArrayRead(dloc, &view.d));
+  view.x = &ale_->coordinates();
+  // The pressure unknown of the last step is the multiplier of the momentum balance at
+  // t_{n+alpha_f} on that configuration: compared there (second order in time).
+  view.x_af = &ale_->coordinates_af();
+  view.t = time();
+  view.t_af = time_af_;
+  for (auto &m : monitors_)
+    m->update(view, dt);
   MonitorRow filled(MonitorRow::with_values);
-  monitor_row(filled, &s);
+  monitor_row(filled, &s, view);
   std::vector<double> row = filled.values();
+  FSI_CALL(VecRestoreArrayRead(uloc, &view.u));
+  FSI_CALL(VecRestoreArrayRead(dloc, &view.d));
   if (fields_ && step_index() % out_.fields_every == 0) {
-    Vec loc = space_.create_local(), dloc = space_.create_local();
-    solution_local(loc);
-    displacement_local(dloc);
-    fields_->write(step_index(), time(), loc, coordinates(), dloc);
-    FSI_CALL(VecDestroy(&loc));
-    FSI_CALL(VecDestroy(&dloc));
-    wss_.write_instantaneous(step_index(), time());
+    fields_->write(step_index(), time(), uloc, ale_->coordinates(), dloc);
+    for (auto &m : monitors_)
+      m->write(step_index(), time());
   }
+  FSI_CALL(VecDestroy(&uloc));
+  FSI_CALL(VecDestroy(&dloc));
   bcs_->observe(time(), row);      // a flow that stops when the valve has closed
   std::vector<double> row_t = row; // the switches' columns: the monitors and the time
   row_t.push_back(time());
@@ -539,7 +466,8 @@ void Simulation::end_adapt_switch_for_period() {
 
 void Simulation::close_outputs() {
   if (fields_) fields_->close();
-  wss_.close();
+  for (auto &m : monitors_)
+    m->close();
 }
 
 RunState Simulation::capture() const {
@@ -550,11 +478,36 @@ RunState Simulation::capture() const {
   s.dt = dt();
   keys_->capture({time_->velocity(), time_->acceleration(), time_->displacement()},
                  ale_->displacement(), material_X_, s);
-  wss_.save(s);
+  for (auto &m : monitors_)
+    m->save(s);
   bcs_->save_state(s.lumped);
   if (rho_switch_) s.lumped["rho_inf_switched"] = rho_switched_;
   if (adapt_switch_) s.lumped["adapt_switched"] = adapt_switched_;
   return s;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection scene_options() {
+  return {
+      "Scene and outputs",
+      {{"scene_name", "scene", "-", "the scene's name (results/<name> by default)"},
+       {"physics", "(required)", "-",
+        "physics switched on: fluid, solid, contact (solid-solid), gap_seal (fluid in a closing "
+        "gap), e.g. fluid,solid,contact,gap_seal"},
+       {"out_dir", "results/SCENE_NAME", "-", "output folder"},
+       {"out_fields_every", "0", "steps", "XDMF/HDF5 fields every N steps (0: none)"},
+       {"checkpoint_every", "0", "steps",
+        "write checkpoint.h5 every N steps (0: only on failure, signal, and at the end if N > 0)"},
+       {"checkpoint_crash_test", "0", "-",
+        "tests only: SIGKILL halfway through the K-th checkpoint"},
+       {"restart", "", "-", "resume from this checkpoint (same scene options, any rank count)"},
+       {"restart_reset_dt", "false", "-",
+        "resume with the scene's -ts_dt and a fresh step controller, not the checkpoint's"},
+       {"sim_rebuild_every", "0", "steps",
+        "rebuild the whole discretisation from its state every N steps (checks state transfer)"},
+       {"allow_unused_options", "false", "-", "otherwise an option nobody reads is an error"},
+       {"ic", "rest", "-", "initial state: rest | velocity | exact"},
+       {"ic_velocity", "", "m/s", "uniform initial velocity vx,vy,vz for -ic velocity"}}};
 }
 
 } // namespace fsi

@@ -1,4 +1,5 @@
 #include "fsi/time/step_control.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>
@@ -114,6 +115,47 @@ void StepControl::accepted(long newton, double e) {
   dt = std::min(nominal, dt / factor);
   easy_run = 0;
   ++grows;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection time_options() {
+  return {
+      "Time integration (PETSc TS names)",
+      {{"ts_type", "alpha", "-", "alpha (generalized-alpha) | steady (static load steps)"},
+       {"ts_dt", "1e-3", "s", "time step"},
+       {"ts_max_steps", "10 (alpha), 1 (steady)", "-",
+        "number of steps (wins over ts_max_time; with -ts_adapt_type error: the last step)"},
+       {"ts_max_time", "", "s", "end time (a whole number of steps)"},
+       {"ts_alpha_radius", "0.5", "-", "spectral radius rho_inf in [0, 1]"},
+       {"ts_alpha_radius_switch_when", "", "-",
+        "COLUMN<VALUE or COLUMN>VALUE on a monitor.csv column or time: after a step where it "
+        "holds "
+        "rho_inf is -ts_alpha_radius_switch_to, after one where it does not -ts_alpha_radius"},
+       {"ts_alpha_radius_switch_to", "0", "-", "rho_inf after the switch, in [0, 1]"},
+       {"ts_predictor", "constant", "-",
+        "Newton's first iterate: constant (V_n) | extrapolated (V_n + dt A_n)"},
+       {"ts_adapt_type", "cut", "-",
+        "cut: retry a failed step with a smaller dt | error: also choose dt by a local error "
+        "estimate (PI controller) | none"},
+       {"ts_rtol", "0.01", "-", "error: relative tolerance on the velocity's local error"},
+       {"ts_atol", "1e-3", "m/s", "error: absolute tolerance on the velocity's local error"},
+       {"ts_adapt_wnormtype", "infinity", "-",
+        "error: norm of the local error over the velocity dofs, infinity (largest) | 2 (root "
+        "mean square)"},
+       {"ts_adapt_switch_when", "", "-",
+        "COLUMN<VALUE or COLUMN>VALUE (with -ts_adapt_type cut): after a step where it holds dt "
+        "is chosen by the error estimate (-ts_rtol, -ts_atol, ...), after one where it does not "
+        "it is -ts_dt"},
+       {"ts_adapt_dt_max", "10 ts_dt", "s", "error: largest step"},
+       {"ts_adapt_period", "0 (none)", "s",
+        "error: steps land on every multiple of it (a cardiac cycle's start); with "
+        "-ts_adapt_switch_when each new period starts at -ts_dt"},
+       {"ts_adapt_safety", "0.9", "-", "error: safety factor of the step-size controller"},
+       {"ts_adapt_max_rejections", "5", "-", "error: rejections of one step before it is taken"},
+       {"ts_adapt_scale_solve_failed", "0.5", "-", "dt factor after a failed step, in (0, 1)"},
+       {"ts_adapt_dt_min", "dt/1000", "s", "below this step size the run stops (exit 3)"},
+       {"step_grow_after", "3", "steps", "easy steps before dt grows back by 1/factor"},
+       {"step_easy_newton", "4", "-", "a step with at most this many Newton iterations is easy"}}};
 }
 
 } // namespace fsi

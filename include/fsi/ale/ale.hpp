@@ -20,6 +20,7 @@
 // reference, where the mesh displacement is zero), not the solid's material reference.
 #pragma once
 #include "fsi/ale/mesh_motion.hpp"
+#include "fsi/post/monitor_row.hpp"
 #include "fsi/time/step_context.hpp"
 #include <functional>
 #include <memory>
@@ -66,6 +67,9 @@ public:
   void set_sealed(std::function<void(std::vector<char> &)> sealed) { sealed_ = std::move(sealed); }
   bool ignores_sealed() const { return ignore_sealed_; }
   const MeshQuality &quality() const { return quality_; }
+  // Its columns of monitor.csv (with a moving mesh): quality, the last step's geometry passes
+  // and, with remeshing, what the trigger judges.
+  void add_to(MonitorRow &row, int geometry_iterations, double geometry_change) const;
   // Remeshing: on for this run; fresh = the mesh was just built, its first step does not ask.
   bool remeshing() const { return remesh_skewness_ > 0 && follows_solid(); }
   void set_fresh(bool fresh) { fresh_ = fresh; }

@@ -77,6 +77,7 @@ public:
   bool couplings_changed() const override { return changed_; }
   void pattern_built() override;
   const ContactStats &stats() const { return stats_; }
+  void add_to(MonitorRow &row) const override; // pairs, penetration, force (walls, rod)
   // Surface nodes closer to another piece than the offset on the current positions (the same on
   // every rank): where the pieces touch, e.g. the leaflets' coaptation.
   struct Touch {

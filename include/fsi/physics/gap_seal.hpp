@@ -49,6 +49,7 @@ public:
     n = 0;
   }
   const GapSealStats &stats() const { return stats_; }
+  void add_to(MonitorRow &row) const override; // sealing cells, largest resistance
   // Resistance [Pa s/m^2] of every local fluid cell (0 where open), for output.
   const std::vector<double> &alpha() const { return alpha_; }
   const std::vector<PetscInt> &cells() const { return cells_; }

@@ -1,7 +1,8 @@
 // A physics module contributes element residuals and Jacobians on its region.  The scene decides
 // which modules exist; the coupled system sums what they add.  A module that is not created costs
-// nothing.  A new physics is one new module file plus its creation line in the Simulation.
+// nothing.  A new physics is one new module file plus its line in src/physics/registry.cpp.
 #pragma once
+#include "fsi/post/monitor_row.hpp"
 #include "fsi/time/step_context.hpp"
 #include <string>
 #include <vector>
@@ -31,6 +32,8 @@ struct PhysicsModule {
   // Collective, at the start of each nonlinear solve (ctx.U = the initial guess), before
   // couplings_changed() is asked.
   virtual void begin_solve(const StepContext &) {}
+  // Its columns of monitor.csv and, when the row wants them, their values after a step.
+  virtual void add_to(MonitorRow &) const {}
 };
 
 } // namespace fsi

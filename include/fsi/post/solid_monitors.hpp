@@ -7,22 +7,23 @@
 #include "fsi/physics/fluid.hpp"
 #include "fsi/physics/solid.hpp"
 #include "fsi/post/locate.hpp"
+#include "fsi/post/monitor.hpp"
 
 namespace fsi {
 
-class Simulation;
-
-class SolidMonitors {
+class SolidMonitors : public Monitor {
 public:
   void setup(const Space &space, const SolidModule *solid, const ExactSolid *exact);
+  bool active() const { return solid_ != nullptr; }
   std::vector<std::string> columns() const;
-  std::vector<double> evaluate(const Simulation &pb);
-  // Last displacement error (absolute, relative); valid with an exact solution.
-  double error_l2() const { return err_; }
-  bool has_exact() const { return exact_ != nullptr; }
-  double error_relative() const { return err_rel_; }
+  void add_to(MonitorRow &row, const FieldView &view) override {
+    row.add(columns(), [&] { return evaluate(view); });
+  }
+  // The last displacement error, absolute and relative (error_final).
+  void summarize(Json &j, bool stepped) const override;
 
 private:
+  std::vector<double> evaluate(const FieldView &view);
   const Space *space_ = nullptr;
   const SolidModule *solid_ = nullptr;
   const ExactSolid *exact_ = nullptr;

@@ -29,30 +29,27 @@
 #include "fsi/physics/fluid.hpp"
 #include "fsi/physics/solid.hpp"
 #include "fsi/post/locate.hpp"
+#include "fsi/post/monitor.hpp"
 #include <array>
 #include <string>
 #include <vector>
 
 namespace fsi {
 
-class Simulation;
-
-class ValveMonitors {
+class ValveMonitors : public Monitor {
 public:
-  // touching_gap: the distance contact keeps between touching leaflets [m] (0: no contact).
+  // contact: the leaflets' contact (null: none), for the coaptation and the orifice with
+  // touching gaps closed.
   void setup(const Space &space, const FluidModule *fluid, const SolidModule *solid,
-             double touching_gap);
+             ContactModule *contact);
   bool active() const { return active_; }
   std::vector<std::string> columns() const;
-  std::vector<double> evaluate(const Simulation &pb);
-  // The coaptation columns (with leaflet contact on 2 or 3 leaflets): names, then values from
-  // the contact's touching nodes.
-  static std::vector<std::string> coaptation_columns() {
-    return {"valve_coaptation_height", "valve_coaptation_length"};
-  }
+  void add_to(MonitorRow &row, const FieldView &view) override;
+  // The coaptation columns' values from the contact's touching nodes (2 or 3 leaflets).
   std::vector<double> coaptation(const std::vector<ContactModule::Touch> &touch, int pieces) const;
 
 private:
+  std::vector<double> evaluate(const FieldView &view);
   struct Sample {
     PointLocation at;
     double weight; // area [m^2]
@@ -65,7 +62,8 @@ private:
   const Space *space_ = nullptr;
   const SolidModule *solid_ = nullptr;
   const FluidModule *fluid_ = nullptr;
-  double down_at_ = 0;      // axial position of the downstream pressure plane [m]
+  double down_at_ = 0; // axial position of the downstream pressure plane [m]
+  ContactModule *contact_ = nullptr;
   double touching_gap_ = 0; // the contact offset [m] (0: no contact)
   bool active_ = false;
   double R_ = 0;

@@ -21,15 +21,14 @@
 #include "fsi/io/output.hpp"
 #include "fsi/io/run_state.hpp"
 #include "fsi/physics/fluid.hpp"
+#include "fsi/post/monitor.hpp"
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace fsi {
 
-class Simulation;
-
-class WallShear {
+class WallShear : public Monitor {
 public:
   // material_X: the solid's material reference per vertex (the faces' identity across remeshes,
   // written as <surface>/material_points; the ALE reference changes with every new mesh).
@@ -38,16 +37,18 @@ public:
              const std::vector<double> &material_X);
   bool active() const { return !surf_.empty(); }
   // After each accepted step of length dt: instantaneous tau_w, accumulators, window closing.
-  void update(const Simulation &pb, double dt);
+  void update(const FieldView &view, double dt) override;
   std::vector<std::string> columns() const;
-  const std::vector<double> &values() const { return values_; }
-  void write_instantaneous(long step, double t);
-  void close();
-  // Summary of the last closed window per surface (area means, OSI range).
-  Json summary() const;
+  void add_to(MonitorRow &row, const FieldView &) override {
+    row.add(columns(), [&] { return values_; });
+  }
+  void write(long step, double t) override; // instantaneous tau_w with the fields
+  void close() override;
+  // "hemodynamics": the last closed window per surface (area means, OSI range).
+  void summarize(Json &j, bool stepped) const override;
   // Checkpoint and rebuild: accumulators and window state.
-  void save(RunState &s) const;
-  void load(const RunState &s);
+  void save(RunState &s) const override;
+  void load(const RunState &s) override;
 
 private:
   struct Surface {
@@ -61,7 +62,7 @@ private:
     long n_global = 0;
     Json last_window;
   };
-  void compute(Surface &s, const Simulation &pb, const PetscScalar *u); // u: local solution
+  void compute(Surface &s, const FieldView &view);
   void close_window();
   void write_xdmf() const; // rank 0, after the file is closed
   const Space *space_ = nullptr;

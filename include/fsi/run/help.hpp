@@ -1,7 +1,8 @@
-// fsi_app -help: every option of every module, whether the scene switches it on or not, with
-// its meaning, default and unit; exits 0 without a scene.  The option tables live in
-// src/run/help.cpp, one section per module; the boundary-condition types come from their
-// registry.  tests/test_help.py checks that every option the sources read is documented.
+// fsi_app -help: every option of every part, whether the scene switches it on or not, with
+// its meaning, default and unit; exits 0 without a scene.  Each part declares its options next to
+// the code that reads them (scene/option_doc.hpp); the physics, monitors and boundary-condition
+// types come from their registries.  tests/test_help.py checks that every option the sources
+// read is declared in its reader's folder.
 #pragma once
 #include "fsi/mesh/mesh.hpp"
 

@@ -15,16 +15,10 @@
 #include "fsi/boundary/boundaries.hpp"
 #include "fsi/io/checkpoint.hpp"
 #include "fsi/io/field_writer.hpp"
-#include "fsi/physics/contact.hpp"
 #include "fsi/physics/fluid.hpp"
-#include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/solid.hpp"
+#include "fsi/post/monitor.hpp"
 #include "fsi/post/monitor_condition.hpp"
-#include "fsi/post/monitor_row.hpp"
-#include "fsi/post/monitors.hpp"
-#include "fsi/post/solid_monitors.hpp"
-#include "fsi/post/valve_monitors.hpp"
-#include "fsi/post/wall_shear.hpp"
 #include "fsi/problem/coupled_system.hpp"
 #include "fsi/time/generalized_alpha.hpp"
 #include "fsi/time/step_control.hpp"
@@ -37,9 +31,9 @@ namespace fsi {
 // What the scene asks for, read once from the options (-scene_name, -physics, -ts_*).
 struct Scene {
   std::string name;
-  std::vector<std::string> physics;
-  bool fluid = false, solid = false, contact = false, gap_seal = false;
+  std::vector<std::string> physics; // checked against the registry (physics_registry.hpp)
   TimeParams time;
+  bool has(const std::string &physics_name) const;
   std::string tag() const; // what a state must match: physics and time scheme
   static Scene from_options();
 };
@@ -106,22 +100,14 @@ public:
   const Boundaries &boundaries() const { return *bcs_; }
   const FluidModule *fluid() const { return fluid_; }
   const SolidModule *solid() const { return solid_; }
-  const Monitors &monitors() const { return mon_; }
-  const SolidMonitors &solid_monitors() const { return smon_; }
-  const WallShear &wall_shear() const { return wss_; }
+  // The monitors the scene switched on, in monitor.csv's column order.
+  const std::vector<std::unique_ptr<Monitor>> &monitors() const { return monitors_; }
   const std::vector<double> &material_X() const { return material_X_; }
   Vec solution() const { return U_; }
-  void solution_local(Vec &loc) const { space_.to_local(U_, loc); }
-  void displacement_local(Vec &loc) const { space_.to_local(time_->displacement(), loc); }
-  const std::vector<double> &coordinates() const { return ale_->coordinates(); }
-  // The pressure unknown of the last step is the multiplier of the momentum balance at
-  // t_{n+alpha_f} on that configuration: compare it there (second order in time).
-  const std::vector<double> &coordinates_af() const { return ale_->coordinates_af(); }
-  double time_af() const { return time_af_; }
 
 private:
   void build_physics(const Mesh &mesh);
-  void monitor_row(MonitorRow &row, const StepStats *s);
+  void monitor_row(MonitorRow &row, const StepStats *s, const FieldView &view);
   void initialize(const std::string &ic);
   void restore(const RunState &s);
   void dirichlet_data(double t_np1);
@@ -135,8 +121,6 @@ private:
   std::unique_ptr<ExactSolid> exact_solid_;
   const FluidModule *fluid_ = nullptr;
   const SolidModule *solid_ = nullptr;
-  ContactModule *contact_ = nullptr;
-  const GapSeal *seal_ = nullptr;
   std::unique_ptr<Boundaries> bcs_;
   std::unique_ptr<GeneralizedAlpha> time_;
   // -ts_alpha_radius_switch_when: rho_inf is rho_switch_to_ after steps where the condition holds.
@@ -149,10 +133,7 @@ private:
   std::unique_ptr<Ale> ale_;
   std::unique_ptr<CoupledSystem> system_;
   std::unique_ptr<Checkpoint> keys_;
-  Monitors mon_;
-  SolidMonitors smon_;
-  ValveMonitors valve_;
-  WallShear wss_;
+  std::vector<std::unique_ptr<Monitor>> monitors_;
   std::unique_ptr<FieldWriter> fields_;
   Vec U_ = nullptr, Sloc_ = nullptr;
   double time_af_ = 0;

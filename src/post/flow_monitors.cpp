@@ -1,14 +1,14 @@
-#include "fsi/post/monitors.hpp"
+#include "fsi/post/flow_monitors.hpp"
 #include "fsi/post/locate.hpp"
-#include "fsi/run/simulation.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <cmath>
 
 namespace fsi {
 
-void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
-                     const ExactFlow *exact) {
+void FlowMonitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
+                         const ExactFlow *exact) {
   space_ = &space;
   fluid_ = fluid;
   exact_ = fluid ? exact : nullptr;
@@ -45,7 +45,7 @@ void Monitors::setup(const Mesh &mesh, const Space &space, const FluidModule *fl
   }
 }
 
-std::vector<std::string> Monitors::columns() const {
+std::vector<std::string> FlowMonitors::columns() const {
   std::vector<std::string> c;
   for (auto &n : surf_names_)
     for (auto q : {"flux", "area", "fx", "fy", "fz", "p"})
@@ -68,8 +68,8 @@ std::vector<std::string> Monitors::columns() const {
   return c;
 }
 
-ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
-                            const std::vector<double> &Xp, double tp) const {
+ErrorNorms FlowMonitors::errors(const PetscScalar *u, const std::vector<double> &Xv, double tv,
+                                const std::vector<double> &Xp, double tp) const {
   static const QuadRule rule = tet_rule(6);
   // sums: |ev|^2, |v|^2, ep^2, p^2, int ep, int p, volume, (div vh)^2
   double acc[8] = {};
@@ -135,7 +135,7 @@ ErrorNorms Monitors::errors(const PetscScalar *u, const std::vector<double> &Xv,
 // Kinetic energy, dissipation (viscous, and grad-div's gamma (div v)^2 when on) and convective
 // power of this rank's cells (sums in e[3]); degree 6: |v|^2 (div v) is degree 5 on straight-sided
 // P2 cells.
-void Monitors::energy(const PetscScalar *u, const std::vector<double> &Xc, double e[3]) const {
+void FlowMonitors::energy(const PetscScalar *u, const std::vector<double> &Xc, double e[3]) const {
   static const QuadRule rule = tet_rule(6);
   const double rho = fluid_->params().rho, mu = fluid_->params().mu, gd = fluid_->params().grad_div;
   for (PetscInt k : fluid_->cells()) {
@@ -172,15 +172,12 @@ void Monitors::energy(const PetscScalar *u, const std::vector<double> &Xc, doubl
   }
 }
 
-std::vector<double> Monitors::evaluate(const Simulation &pb) {
+std::vector<double> FlowMonitors::evaluate(const FieldView &view) {
   std::vector<double> out;
   if (!fluid_) return out;
-  Vec loc = space_->create_local();
-  pb.solution_local(loc);
-  const PetscScalar *u;
-  FSI_CALL(VecGetArrayRead(loc, &u));
-  const auto &Xc = pb.coordinates();
-  const double mu = fluid_->params().mu, t = pb.time();
+  const PetscScalar *u = view.u;
+  const auto &Xc = *view.x;
+  const double mu = fluid_->params().mu, t = view.t;
   static const QuadRule frule = tri_rule(4);
 
   std::vector<double> surf;
@@ -260,7 +257,7 @@ std::vector<double> Monitors::evaluate(const Simulation &pb) {
     out.insert(out.end(), g, g + (exact_ ? 8 : 4));
   }
   if (exact_) {
-    err_ = errors(u, Xc, t, pb.coordinates_af(), pb.time_af());
+    err_ = errors(u, Xc, t, *view.x_af, view.t_af);
     out.insert(out.end(), {err_.v_l2, err_.p_l2, err_.v_l2 / std::max(err_.v_norm, 1e-300),
                            err_.p_l2 / std::max(err_.p_norm, 1e-300)});
   }
@@ -284,9 +281,36 @@ std::vector<double> Monitors::evaluate(const Simulation &pb) {
     MPI_Allreduce(e, g, 3, MPI_DOUBLE, MPI_SUM, comm_);
     out.insert(out.end(), g, g + 3);
   }
-  FSI_CALL(VecRestoreArrayRead(loc, &u));
-  FSI_CALL(VecDestroy(&loc));
   return out;
+}
+
+void FlowMonitors::summarize(Json &j, bool stepped) const {
+  if (!exact_ || !stepped) return;
+  Json err;
+  err.set("velocity_l2", err_.v_l2)
+      .set("pressure_l2", err_.p_l2)
+      .set("divergence_l2", err_.div_l2)
+      .set("velocity_l2_relative", err_.v_l2 / err_.v_norm)
+      .set("pressure_l2_relative", err_.p_l2 / err_.p_norm);
+  j.set("error_final", err);
+}
+
+std::unique_ptr<Monitor> make_flow_monitors(const MonitorSetup &m) {
+  auto f = std::make_unique<FlowMonitors>();
+  f->setup(m.mesh, m.space, m.fluid, m.exact);
+  if (!f->active()) return nullptr;
+  return f;
+}
+
+// Its options, for -help and docs/options.md (option_doc.hpp).
+OptionSection flow_monitor_options() {
+  return {"Flow monitors",
+          {{"monitor_surfaces", "", "-", "flux, area, force, mean pressure per named boundary"},
+           {"monitor_fluid_volume", "false", "-", "fluid volume per step"},
+           {"monitor_fluid_energy", "false", "-",
+            "fluid kinetic energy, dissipation (viscous + grad-div), convective form's power per "
+            "step"},
+           {"probe_points", "", "m", "fluid probes x,y,z;x,y,z"}}};
 }
 
 } // namespace fsi

@@ -14,28 +14,31 @@
 #pragma once
 #include "fsi/analytic/analytic.hpp"
 #include "fsi/physics/fluid.hpp"
+#include "fsi/post/monitor.hpp"
 #include <string>
 #include <vector>
 
 namespace fsi {
-
-class Simulation;
 
 struct ErrorNorms {
   double v_l2 = 0, p_l2 = 0, v_norm = 0, p_norm = 0;
   double div_l2 = 0; // ||div v_h||: the exact flow is divergence-free
 };
 
-class Monitors {
+class FlowMonitors : public Monitor {
 public:
   void setup(const Mesh &mesh, const Space &space, const FluidModule *fluid,
              const ExactFlow *exact);
+  bool active() const { return fluid_ != nullptr; }
   std::vector<std::string> columns() const;
-  std::vector<double> evaluate(const Simulation &pb);
-  const ErrorNorms &last_errors() const { return err_; }
-  bool has_exact() const { return exact_ != nullptr; }
+  void add_to(MonitorRow &row, const FieldView &view) override {
+    row.add(columns(), [&] { return evaluate(view); });
+  }
+  // The last errors against the exact flow (error_final).
+  void summarize(Json &j, bool stepped) const override;
 
 private:
+  std::vector<double> evaluate(const FieldView &view);
   struct Probe {
     double x[3];
     int owner = -1;        // rank that evaluates it
