@@ -2,22 +2,25 @@
 
   scripts/study <scene> --vary mesh=coarse,medium,fine --vary dt=2e-4,1e-4,5e-5
                 [--vary preset=direct,fieldsplit_ilu] [--vary rho_inf=1,0.5,0]
-                [--qoi COLUMN:max|min|final] [--curve COLUMN] [--metric qoi|curve]
+                [--qoi COLUMN:max|min|final|mean@T0-T1 ...] [--curve COLUMN] [--metric qoi|curve]
                 [--target-error 1e-2] [--np 2] [--out DIR] [--plot-only] [-- app options]
 
 Runs every case of the grid (cases already finished in DIR are reused), then for each case: the
-quantity of interest (a monitor column's max/min/final), its error against a reference, the
+quantities of interest (a monitor column's max/min/final, or its time-weighted mean over
+[T0, T1] s; --qoi repeated for several, the first one primary), each one's error against its
+reference, the
 difference of the monitor curve from the finest case's, and the cost (wall time, s/step,
 iterations).  The reference is the finest case, improved by Richardson extrapolation along each
 refinement direction with >= 3 levels at a constant ratio whose observed order is sane (0.5..6;
 the script says which it used).  Writes DIR/study.csv, DIR/study.md and DIR/accuracy_cost.png
 (error against wall time, log-log, one curve per varied parameter with the others at their finest,
-the Pareto front marked), prints observed orders along each numeric parameter, and with
---target-error the cheapest case that meets it.
+the Pareto front marked, by the primary quantity), prints observed orders along each numeric
+parameter, and with --target-error the cheapest case that meets it.  With several quantities,
+also accuracy_cost_all.png (one panel per quantity) and a table of every quantity per case.
 
 Scenes declare their mesh levels and default quantity in comment lines of their .opts:
   # study-levels: coarse=0.002 medium=0.0015 fine=0.001     (values of -mesh_h [m])
-  # study-qoi: solid_probe0_ux:max
+  # study-qoi: solid_probe0_ux:max            (several: separated by spaces)
 Parameters: mesh (a level name or an -mesh_h value), dt (-ts_dt [s]; the end time stays the
 scene's), preset (petsc_options/<name>.opts), rho_inf (-ts_alpha_radius), or any app option as
 opt:<name> (e.g. opt:ale_geometry_iterations=0,3).
@@ -52,7 +55,7 @@ def scene_meta(path):
                 k, v = item.split("=")
                 levels[k] = v
         elif line.startswith("# study-qoi:"):
-            qoi = line.split(":", 1)[1].strip()
+            qoi = line.split(":", 1)[1].split()
     return levels, qoi
 
 
@@ -120,17 +123,48 @@ def run_case(scene, params, levels, args, extra):
     return out
 
 
-def read_case(out, qoi_spec, curve_col):
-    s = json.load(open(os.path.join(out, "summary.json")))
-    rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(out, "monitor.csv")))]
-    col, how = (qoi_spec.split(":") + ["max"])[:2]
+def window_mean(t, v, t0, t1):
+    """Time-weighted (trapezoid) mean of v over [t0, t1], v linear between rows."""
+    def at(x):
+        for i in range(len(t) - 1):
+            if t[i] <= x <= t[i + 1]:
+                w = (x - t[i]) / (t[i + 1] - t[i])
+                return (1 - w) * v[i] + w * v[i + 1]
+        return None
+    pts = [(t0, at(t0))] + [(a, b) for a, b in zip(t, v) if t0 < a < t1] + [(t1, at(t1))]
+    if pts[0][1] is None or pts[-1][1] is None:
+        return None
+    area = sum(0.5 * (pts[i][1] + pts[i + 1][1]) * (pts[i + 1][0] - pts[i][0]) for i in range(len(pts) - 1))
+    return area / (t1 - t0)
+
+
+def qoi_value(spec, rows, out):
+    """A quantity of interest from monitor rows: COLUMN:max|min|final|mean@T0-T1."""
+    col, how = (spec.split(":", 1) + ["max"])[:2]
     if col not in rows[0]:
         sys.exit(f"study: monitor column '{col}' not in {out}/monitor.csv")
     vals = [r[col] for r in rows]
-    q = {"max": max(vals), "min": min(vals), "final": vals[-1]}[how]
+    if how.startswith("mean@"):
+        try:
+            t0, t1 = (float(x) for x in how[5:].split("-"))
+        except ValueError:
+            sys.exit(f"study: --qoi {spec}: expected COLUMN:mean@T0-T1 (seconds, T0 < T1)")
+        q = window_mean([r["time"] for r in rows], vals, t0, t1) if t0 < t1 else None
+        if q is None:
+            sys.exit(f"study: --qoi {spec}: the run in {out} does not cover [{t0}, {t1}] s")
+        return q
+    if how not in ("max", "min", "final"):
+        sys.exit(f"study: --qoi {spec}: use COLUMN:max, :min, :final or :mean@T0-T1")
+    return {"max": max(vals), "min": min(vals), "final": vals[-1]}[how]
+
+
+def read_case(out, specs, curve_col):
+    s = json.load(open(os.path.join(out, "summary.json")))
+    rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(out, "monitor.csv")))]
+    qois = {spec: qoi_value(spec, rows, out) for spec in specs}
     curve = ([r["time"] for r in rows], [r[curve_col] for r in rows])
     it = s["iterations"]
-    return {"qoi": q, "curve": curve, "wall": s["wall_time"]["total"],
+    return {"qois": qois, "qoi": qois[specs[0]], "curve": curve, "wall": s["wall_time"]["total"],
             "per_step": s["wall_time"]["per_step"], "steps": s["steps"], "cells": s["cells"],
             "dofs": s["dofs"]["total"], "newton": it["newton_mean_per_step"],
             "krylov": it["krylov_total"] / max(it["newton_total"], 1),
@@ -198,7 +232,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene")
     ap.add_argument("--vary", action="append", default=[], metavar="PARAM=V1,V2,...")
-    ap.add_argument("--qoi")
+    ap.add_argument("--qoi", action="append", help="COLUMN:max|min|final|mean@T0-T1 (repeatable)")
     ap.add_argument("--curve", help="monitor column compared over time (default: the qoi's)")
     ap.add_argument("--metric", choices=("qoi", "curve"), default="qoi")
     ap.add_argument("--target-error", type=float)
@@ -212,6 +246,8 @@ def main():
     args.qoi = args.qoi or qoi
     if not args.qoi:
         sys.exit("study: give --qoi COLUMN:max|min|final (or a '# study-qoi:' line in the scene)")
+    specs = args.qoi
+    args.qoi = specs[0]  # the primary quantity: the Pareto front's and the curve's
     curve_col = args.curve or args.qoi.split(":")[0]
     args.out = args.out or os.path.join(ROOT, "results", "study", os.path.basename(scene)[:-5])
     os.makedirs(args.out, exist_ok=True)
@@ -238,7 +274,7 @@ def main():
         params = dict(zip(names, combo))
         out = run_case(scene, params, levels, args, extra)
         if out:
-            c = read_case(out, args.qoi, curve_col)
+            c = read_case(out, specs, curve_col)
             c["params"] = params
             cases.append(c)
     if not cases:
@@ -256,34 +292,48 @@ def main():
     # known: its last difference (finest against second finest) is added to every case's error
     # as an estimate (a floor), and said.  The curve metric has no extrapolation: its floor is
     # the last curve difference along every refinement direction.
-    q_ref, notes, floor_q, floor_c = ref_case["qoi"], [], 0.0, 0.0
+    def reference(spec):
+        """The spec's reference value, the notes on how it was found, and the finest case's
+        estimated relative error where no extrapolation was possible."""
+        q_ref, notes, floor_q = ref_case["qois"][spec], [], 0.0
+        for p in names:
+            if not finer(p) or len(grid[p]) < 2:
+                continue
+            line = [by.get(key({**finest, p: v})) for v in grid[p]]
+            ext = None
+            if len(grid[p]) >= 3 and None not in line[-3:]:
+                order, ext = richardson([c["qois"][spec] for c in line], level_values(p, line, grid, levels))
+                why = "non-monotone" if order is None else f"observed order {order:.2f} not in 0.5..6"
+            else:
+                why = "fewer than 3 levels"
+            if ext is not None:
+                q_ref += ext - ref_case["qois"][spec]  # additive error model e = C_h h^p + C_t dt^q
+                notes.append(f"{p}: Richardson with observed order {order:.2f}, correction "
+                             f"{ext - ref_case['qois'][spec]:+.4e}")
+            elif line[-2] is not None:
+                f = abs(line[-1]["qois"][spec] - line[-2]["qois"][spec])
+                floor_q += f
+                notes.append(f"{p}: no Richardson ({why}); the finest level's error is estimated by its "
+                             f"last difference {f:.3e} ({f / max(abs(ref_case['qois'][spec]), 1e-300):.2e} "
+                             "relative), added to every case")
+        return q_ref, notes, floor_q / max(abs(q_ref), 1e-300)
+
+    floor_c = 0.0
     for p in names:
-        if not finer(p) or len(grid[p]) < 2:
-            continue
-        line = [by.get(key({**finest, p: v})) for v in grid[p]]
-        if line[-2] is not None:
-            floor_c += curve_diff(line[-2]["curve"], line[-1]["curve"])
-        ext = None
-        if len(grid[p]) >= 3 and None not in line[-3:]:
-            order, ext = richardson([c["qoi"] for c in line], level_values(p, line, grid, levels))
-            why = "non-monotone" if order is None else f"observed order {order:.2f} not in 0.5..6"
-        else:
-            why = "fewer than 3 levels"
-        if ext is not None:
-            q_ref += ext - ref_case["qoi"]  # additive error model e = C_h h^p + C_t dt^q
-            notes.append(f"{p}: Richardson with observed order {order:.2f}, correction "
-                         f"{ext - ref_case['qoi']:+.4e}")
-        elif line[-2] is not None:
-            f = abs(line[-1]["qoi"] - line[-2]["qoi"])
-            floor_q += f
-            notes.append(f"{p}: no Richardson ({why}); the finest level's error is estimated by its "
-                         f"last difference {f:.3e} ({f / abs(ref_case['qoi']):.2e} relative), added to every case")
-    floor_q /= abs(q_ref)
+        if finer(p) and len(grid[p]) >= 2:
+            line = [by.get(key({**finest, p: v})) for v in grid[p]]
+            if line[-2] is not None:
+                floor_c += curve_diff(line[-2]["curve"], line[-1]["curve"])
+    refs = {spec: reference(spec) for spec in specs}
+    for c in cases:
+        c["errs"] = {spec: abs(c["qois"][spec] - r) / max(abs(r), 1e-300) + fl
+                     for spec, (r, _, fl) in refs.items()}
+    q_ref, notes, floor_q = refs[args.qoi]
     ref_text = (f"reference {args.qoi} = {q_ref:.6e} (finest case {case_name(finest)} "
                 f"{ref_case['qoi']:.6e}; " + ("; ".join(notes) if notes else "no extrapolation") + ")")
     print(ref_text)
     for c in cases:
-        c["err_qoi"] = abs(c["qoi"] - q_ref) / abs(q_ref) + floor_q
+        c["err_qoi"] = c["errs"][args.qoi]
         c["err_curve"] = curve_diff(c["curve"], ref_case["curve"]) + floor_c
         c["error"] = c["err_qoi"] if args.metric == "qoi" else c["err_curve"]
     if floor_c > 0:
@@ -322,6 +372,7 @@ def main():
     # Outputs.
     cols = names + ["cells", "dofs", "steps", "wall_s", "s_per_step", "newton_per_step",
                     "krylov_per_newton", "memory_mb", "qoi", "err_qoi", "err_curve", "pareto"]
+    cols += [f"{k}[{spec}]" for spec in specs[1:] for k in ("qoi", "err")]
     with open(os.path.join(args.out, "study.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(cols)
@@ -329,7 +380,8 @@ def main():
             w.writerow([c["params"][p] for p in names] + [
                 c["cells"], c["dofs"], c["steps"], f"{c['wall']:.3f}", f"{c['per_step']:.4f}",
                 f"{c['newton']:.3f}", f"{c['krylov']:.2f}", f"{c['memory']:.0f}", f"{c['qoi']:.9e}",
-                f"{c['err_qoi']:.4e}", f"{c['err_curve']:.4e}", int(id(c) in front)])
+                f"{c['err_qoi']:.4e}", f"{c['err_curve']:.4e}", int(id(c) in front)] +
+                [f"{x:.9e}" for spec in specs[1:] for x in (c["qois"][spec], c["errs"][spec])])
     md = [f"# Study: {os.path.basename(scene)[:-5]}", "",
           f"Quantity of interest `{args.qoi}`; curve `{curve_col}` (L2 in time against the finest "
           f"case, relative to its peak); error metric for the Pareto front: **{args.metric}**.", "",
@@ -342,6 +394,16 @@ def main():
                   f" | {c['cells']} | {c['dofs']} | {c['steps']} | {c['wall']:.1f} | {c['per_step']:.3f} | "
                   f"{c['newton']:.2f} | {c['krylov']:.1f} | {c['memory']:.0f} | {c['qoi']:.5e} | "
                   f"{c['err_qoi']:.2e} | {c['err_curve']:.2e} | {'**yes**' if id(c) in front else ''} |")
+    if len(specs) > 1:
+        md += ["", "Every quantity (value, estimated relative error):", ""]
+        for spec in specs:
+            r, n, _ = refs[spec]
+            md.append(f"- `{spec}`: reference {r:.6e} ({'; '.join(n) if n else 'no extrapolation'})")
+        md += ["", "| case | wall [s] | " + " | ".join(f"`{x}`" for x in specs) + " |",
+               "|---|---|" + "---|" * len(specs)]
+        for c in sorted(cases, key=lambda c: c["wall"]):
+            md.append(f"| {case_name(c['params'])} | {c['wall']:.1f} | " +
+                      " | ".join(f"{c['qois'][x]:.4g} ({c['errs'][x]:.1e})" for x in specs) + " |")
     if order_lines:
         md += ["", "Observed orders (successive differences: QoI, curve):", "",
                "| along | others | QoI differences | QoI orders | curve differences | curve orders |",
@@ -394,7 +456,29 @@ def main():
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(args.out, "accuracy_cost.png"), dpi=130)
-    print(f"wrote {os.path.relpath(args.out, ROOT)}/study.csv, study.md, accuracy_cost.png")
+    if len(specs) > 1:
+        n = len(specs)
+        cols_ = min(n, 3)
+        fig, axes = plt.subplots((n + cols_ - 1) // cols_, cols_, figsize=(4.2 * cols_, 3.4 * ((n + cols_ - 1) // cols_)),
+                                 squeeze=False)
+        for ax, spec in zip(axes.flat, specs):
+            for p in names:
+                line = [by.get(key({**finest, p: v})) for v in grid[p]]
+                line = [c for c in line if c and c["errs"][spec] > 0]
+                if line:
+                    ax.loglog([c["wall"] for c in line], [c["errs"][spec] for c in line], "-o", ms=4,
+                              label=f"{p}: {', '.join(c['params'][p] for c in line)}")
+            ax.set_title(spec, fontsize=8)
+            ax.set_xlabel(f"wall time [s] ({args.np} ranks)", fontsize=7)
+            ax.set_ylabel("relative error (est.)", fontsize=7)
+            ax.grid(True, which="both", lw=0.3)
+            ax.legend(fontsize=6)
+        for ax in list(axes.flat)[n:]:
+            ax.axis("off")
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, "accuracy_cost_all.png"), dpi=120)
+    print(f"wrote {os.path.relpath(args.out, ROOT)}/study.csv, study.md, accuracy_cost.png"
+          + (", accuracy_cost_all.png" if len(specs) > 1 else ""))
 
 
 if __name__ == "__main__":
