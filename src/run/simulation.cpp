@@ -1,9 +1,9 @@
 #include "fsi/run/simulation.hpp"
-#include "fsi/scene/option_doc.hpp"
 
 #include "fsi/physics/gap_seal.hpp"
 #include "fsi/physics/interface_flux.hpp"
 #include "fsi/physics/physics_registry.hpp"
+#include "fsi/scene/option_doc.hpp"
 #include "fsi/scene/options.hpp"
 
 #include <algorithm>

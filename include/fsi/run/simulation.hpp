@@ -93,7 +93,7 @@ public:
   // The state at the last accepted step (collective; data on rank 0).
   RunState capture() const;
 
-  // Read access for monitors and reports.
+  // Read access for the run's reports (summary.json, the header, the cost line).
   const Space &space() const { return space_; }
   const Ale &ale() const { return *ale_; }
   const CoupledSystem &system() const { return *system_; }
