@@ -124,7 +124,10 @@ def run_case(scene, params, levels, args, extra):
 
 
 def window_mean(t, v, t0, t1):
-    """Time-weighted (trapezoid) mean of v over [t0, t1], v linear between rows."""
+    """Time-weighted (trapezoid) mean of v over [t0, t1], v linear between rows.  Not
+    compare_runs.mean (each step's value over its own step): that rule is first order in dt and
+    would add its own dt error to a study along dt (measured on Womersley's [0.2, 0.4] s mean:
+    1.48e-2 at dt 0.05 against 1.62e-2 with this rule, whose four dt levels agree within 0.5 %)."""
     def at(x):
         for i in range(len(t) - 1):
             if t[i] <= x <= t[i + 1]:

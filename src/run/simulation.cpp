@@ -390,13 +390,18 @@ std::vector<std::string> Simulation::monitor_columns() {
 }
 
 std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
-  // The view the monitors read: the fields with ghosts, the mesh, the time.
-  Vec uloc = space_.create_local(), dloc = space_.create_local();
+  // The view the monitors read: the fields with ghosts, the mesh, the time.  The displacement
+  // only where something reads it (a solid's monitors, the field files).
+  const bool fields_due = fields_ && step_index() % out_.fields_every == 0;
+  Vec uloc = space_.create_local(), dloc = nullptr;
   space_.to_local(U_, uloc);
-  space_.to_local(time_->displacement(), dloc);
   FieldView view;
   FSI_CALL(VecGetArrayRead(uloc, &view.u));
-  FSI_CALL(VecGetArrayRead(dloc, &view.d));
+  if (solid_ || fields_due) {
+    dloc = space_.create_local();
+    space_.to_local(time_->displacement(), dloc);
+    FSI_CALL(VecGetArrayRead(dloc, &view.d));
+  }
   view.x = &ale_->coordinates();
   // The pressure unknown of the last step is the multiplier of the momentum balance at
   // t_{n+alpha_f} on that configuration: compared there (second order in time).
@@ -409,14 +414,14 @@ std::vector<double> Simulation::after_step(double dt, const StepStats &s) {
   monitor_row(filled, &s, view);
   std::vector<double> row = filled.values();
   FSI_CALL(VecRestoreArrayRead(uloc, &view.u));
-  FSI_CALL(VecRestoreArrayRead(dloc, &view.d));
-  if (fields_ && step_index() % out_.fields_every == 0) {
+  if (dloc) FSI_CALL(VecRestoreArrayRead(dloc, &view.d));
+  if (fields_due) {
     fields_->write(step_index(), time(), uloc, ale_->coordinates(), dloc);
     for (auto &m : monitors_)
       m->write(step_index(), time());
   }
   FSI_CALL(VecDestroy(&uloc));
-  FSI_CALL(VecDestroy(&dloc));
+  if (dloc) FSI_CALL(VecDestroy(&dloc));
   bcs_->observe(time(), row);      // a flow that stops when the valve has closed
   std::vector<double> row_t = row; // the switches' columns: the monitors and the time
   row_t.push_back(time());
