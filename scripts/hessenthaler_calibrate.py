@@ -3,7 +3,7 @@
 
   scripts/hessenthaler_calibrate.py [--h 0.0015] [--mu 55e3,61e3,67e3] [--target 0.0295]
 
-Runs examples/hessenthaler/calibration.opts (the flap alone under buoyancy, steady load steps) at
+Runs examples/hessenthaler/hessenthaler_calibration.opts (the flap alone under buoyancy, steady load steps) at
 each shear modulus (kappa = 50 mu throughout), fits log(tip) against log(mu) through the two
 values that bracket the target (or the nearest two), solves for the modulus that gives the
 target tip height, runs once more at that modulus to check, and prints the table.  The tip is
@@ -43,7 +43,7 @@ def run(h, mu, out, np_ranks, extra):
     if os.path.exists(os.path.join(out, "summary.json")):
         return tip_y(out)  # already run
     cmd = ["mpirun", "-n", str(np_ranks), os.path.join(ROOT, "build", "fsi_app"),
-           "-options_file", "examples/hessenthaler/calibration.opts", "-mesh_h", repr(h),
+           "-options_file", "examples/hessenthaler/hessenthaler_calibration.opts", "-mesh_h", repr(h),
            "-solid_mu", repr(mu), "-solid_kappa", repr(50 * mu), "-out_dir", out] + extra
     res = subprocess.run(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if res.returncode != 0:

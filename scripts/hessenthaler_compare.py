@@ -3,7 +3,7 @@
 
   scripts/hessenthaler_compare.py RUN_DIR [RUN_DIR...] [--png FILE] [--ref CSV]
 
-For each run (examples/hessenthaler/phase1.opts' output): the flap's deformed centreline from
+For each run (examples/hessenthaler/hessenthaler.opts' output): the flap's deformed centreline from
 its solid probes (reference points from the run's options.txt, deformed = reference + the last
 row's displacement, with the clamp point (0, 0)), interpolated by local cubics at the MRI
 points' heights z; the tip height (the last probe); the RMS and largest difference in y to the
@@ -63,7 +63,7 @@ def option(run, name):
 def read_run(run):
     mon = os.path.join(run, "monitor.csv")
     if not os.path.isfile(mon):
-        fail("%s has no monitor.csv: run examples/hessenthaler/phase1.opts into it first" % run)
+        fail("%s has no monitor.csv: run examples/hessenthaler/hessenthaler.opts into it first" % run)
     with open(mon) as f:
         rows = list(csv.DictReader(f))
     if not rows:
@@ -89,7 +89,8 @@ def read_run(run):
     summary = {}
     if os.path.isfile(os.path.join(run, "summary.json")):
         summary = json.load(open(os.path.join(run, "summary.json")))
-    return line, t_end, drift, jets, summary
+    history = [(float(r["time"]), float(r[tip_col]) * 1e3) for r in rows]
+    return line, t_end, drift, jets, summary, history
 
 
 def slab_peaks(run, planes=(0.010, 0.030), half=0.003):
@@ -134,13 +135,14 @@ def main():
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--ref", default=REF, help="the MRI centreline CSV")
     ap.add_argument("--png", help="the centreline picture (default RUN/centreline.png)")
+    ap.add_argument("--labels", help="the runs' names in the picture, comma-separated (default: folders)")
     a = ap.parse_args()
     mri = read_mri(a.ref)
     print("| run | t end [s] | tip y [mm] (MRI %.2f) | centreline RMS / max diff [mm] | tip drift, last 0.5 s [mm] | jets' speed at probes [m/s] | largest speed, z = 10 / 30 mm slabs [m/s] (MRI ~0.72) | cells | wall [h], ranks | peak MB/rank |" % MRI_TIP)
     print("|---|---|---|---|---|---|---|---|---|---|")
     lines = []
     for run in a.runs:
-        line, t_end, drift, jets, s = read_run(run)
+        line, t_end, drift, jets, s, history = read_run(run)
         zmax = max(z for _, z in line)
         diffs = [interp(line, z) - y for y, z in mri if z <= zmax + 1e-9]
         rms = (sum(d * d for d in diffs) / len(diffs)) ** 0.5
@@ -153,7 +155,7 @@ def main():
             os.path.basename(os.path.normpath(run)), t_end, tip, rms, worst, len(diffs), drift,
             " ".join("%.3f" % v for v in jets), " / ".join("%.3f" % v for v in peaks) if peaks else "-",
             s.get("cells", "?"), wall, s.get("ranks", "?"), mem))
-        lines.append((run, line))
+        lines.append((run, line, history))
     print("\nPublished: " + "; ".join("%s tip %.2f mm%s" % (n, t, ", RMS %.2f mm" % r if r else "") for n, t, r in PUBLISHED))
     png = a.png or os.path.join(a.runs[0], "centreline.png")
     try:
@@ -163,12 +165,22 @@ def main():
     except ImportError:
         print("(no matplotlib: no picture)")
         return
-    fig, ax = plt.subplots(figsize=(6, 4.2))
+    labels = a.labels.split(",") if a.labels else [os.path.basename(os.path.normpath(r)) for r in a.runs]
+    if len(labels) != len(a.runs):
+        fail("--labels gives %d names for %d runs" % (len(labels), len(a.runs)))
+    fig, (ax, axt) = plt.subplots(1, 2, figsize=(10, 4.2), gridspec_kw={"width_ratios": [3, 2]})
     ax.plot([z for _, z in mri], [y for y, _ in mri], "k.", label="MRI (59 points)")
-    for run, line in lines:
+    for (run, line, history), label in zip(lines, labels):
         zs = sorted(z for _, z in line)
         fine = [zs[0] + (zs[-1] - zs[0]) * i / 200 for i in range(201)]
-        ax.plot(fine, [interp(line, z) for z in fine], "-", label="fsi_app " + os.path.basename(os.path.normpath(run)))
+        ax.plot(fine, [interp(line, z) for z in fine], "-", label="fsi_app " + label)
+        axt.plot([t for t, _ in history], [y for _, y in history], "-", label="fsi_app " + label)
+    axt.axhline(MRI_TIP, color="k", ls="--", lw=0.8, label="MRI")
+    axt.set_xlabel("t [s]")
+    axt.set_ylabel("tip y [mm]")
+    axt.set_title("the tip settling (inflow ramped over 0.5 s)")
+    axt.grid(alpha=0.3)
+    axt.legend(fontsize=7)
     zt = max(z for _, z in mri)
     for i, (n, t, _) in enumerate(PUBLISHED):
         ax.plot([zt], [t], "x^sDv"[i], label=n, ls="none")

@@ -16,7 +16,7 @@ MEASURED_TIP = 0.0295  # [m] zero-flow tip height (Hessenthaler et al. 2017)
 # Calibration, h = 2 mm: the scene's mu (calibrated at h = 1.5 mm) gives 29.35 mm here and
 # 29.54 mm at h = 1 mm (scripts/hessenthaler_calibrate.py): 0.3 mm holds the mesh's share and
 # fails on a 2 % change of the load or of the stiffness (the tip goes as mu^-0.68).
-r = run(os.path.join(SCENE, "calibration.opts"), np=1, presets=(), extra=["-mesh_h", "0.002"])
+r = run(os.path.join(SCENE, "hessenthaler_calibration.opts"), np=1, presets=(), extra=["-mesh_h", "0.002"])
 check(r.code == 0 and r.summary["converged"], "the calibration scene converges (h = 2 mm, 1 rank)")
 if r.code == 0:
     last = r.monitor[-1]
@@ -30,7 +30,7 @@ if r.code == 0:
 
 # Phase I, first 4 steps of 10 ms on 2 ranks, coarse mesh, the inflow ramped over 0.1 s.
 ramp = 0.1
-p1 = run(os.path.join(SCENE, "phase1.opts"), np=2, presets=(),
+p1 = run(os.path.join(SCENE, "hessenthaler.opts"), np=2, presets=(),
          extra=["-mesh_h", "0.002", "-ts_max_steps", "4", "-bc_inlet_upper_ramp", str(ramp),
                 "-bc_inlet_lower_ramp", str(ramp), "-out_fields_every", "0", "-checkpoint_every", "0"])
 check(p1.code == 0 and p1.summary["converged"], "Phase I's first 4 steps converge on 2 ranks")
@@ -68,7 +68,7 @@ one_line_exit2([sys.executable, "scripts/hessenthaler_compare.py", r.dir, "--ref
                "missing reference file", "no reference file")
 one_line_exit2([sys.executable, "scripts/hessenthaler_calibrate.py", "--mu=-1e3,60e3"],
                "non-positive modulus", "positive shear moduli")
-bad = run(os.path.join(SCENE, "phase1.opts"), np=1, presets=(),
+bad = run(os.path.join(SCENE, "hessenthaler.opts"), np=1, presets=(),
           extra=["-mesh_h", "0.002", "-ts_max_steps", "1", "-bc_inlet_upper_center", "0,0,-0.0295"])
 check(bad.code == 2 and "does not match the face" in bad.out and "-bc_inlet_upper_radius" in bad.out,
       "an inlet whose parabolic circle is off its face: exit 2, the options to give")
