@@ -114,7 +114,8 @@ def slab_peaks(run, planes=(0.010, 0.030), half=0.003):
         tag = "%06d" % best_step
         x = f["geometry/nodes"][:] + f["fields/mesh_displacement_" + tag][:]
         speed = np.linalg.norm(f["fields/velocity_" + tag][:], axis=1)
-    return [float(speed[np.abs(x[:, 2] - z) <= half].max()) for z in planes]
+    slabs = [speed[np.abs(x[:, 2] - z) <= half] for z in planes]
+    return [float(v.max()) for v in slabs] if all(v.size for v in slabs) else None
 
 
 def interp(line, z):
@@ -137,6 +138,9 @@ def main():
     ap.add_argument("--png", help="the centreline picture (default RUN/centreline.png)")
     ap.add_argument("--labels", help="the runs' names in the picture, comma-separated (default: folders)")
     a = ap.parse_args()
+    labels = a.labels.split(",") if a.labels else [os.path.basename(os.path.normpath(r)) for r in a.runs]
+    if len(labels) != len(a.runs):
+        fail("--labels gives %d names for %d runs" % (len(labels), len(a.runs)))
     mri = read_mri(a.ref)
     print("| run | t end [s] | tip y [mm] (MRI %.2f) | centreline RMS / max diff [mm] | tip drift, last 0.5 s [mm] | jets' speed at probes [m/s] | largest speed, z = 10 / 30 mm slabs [m/s] (MRI ~0.72) | cells | wall [h], ranks | peak MB/rank |" % MRI_TIP)
     print("|---|---|---|---|---|---|---|---|---|---|")
@@ -165,9 +169,6 @@ def main():
     except ImportError:
         print("(no matplotlib: no picture)")
         return
-    labels = a.labels.split(",") if a.labels else [os.path.basename(os.path.normpath(r)) for r in a.runs]
-    if len(labels) != len(a.runs):
-        fail("--labels gives %d names for %d runs" % (len(labels), len(a.runs)))
     fig, (ax, axt) = plt.subplots(1, 2, figsize=(10, 4.2), gridspec_kw={"width_ratios": [3, 2]})
     ax.plot([z for _, z in mri], [y for y, _ in mri], "k.", label="MRI (59 points)")
     for (run, line, history), label in zip(lines, labels):

@@ -130,8 +130,7 @@ struct FlowRate : BoundaryCondition {
   // 80 % of pi R^2 (a disc meshed with 8 segments has 90 %) and every vertex inside the circle,
   // or the profile carries its flux on part of the face or on none of it.
   void check_disc(double area, double R2, double far2) const {
-    const double pi = 3.14159265358979323846;
-    if (far2 > R2 * (1 + 1e-6) || area < 0.8 * pi * R2)
+    if (far2 > R2 * (1 + 1e-6) || area < 0.8 * M_PI * R2)
       throw InputError("boundary '" + name_ + "': the parabolic profile's circle (radius " +
                        std::to_string(std::sqrt(R2)) + " m) does not match the face (area " +
                        std::to_string(area) + " m^2, farthest vertex " +
