@@ -26,7 +26,8 @@
 //            (default 0: none) standing up into the aortic side along its dividing plane, flush
 //            with the free edge, so that the closed valve's neighbouring bands face each other
 //            across the gap and the aortic pressure presses them together (a lunula) instead
-//            of pushing the nearly horizontal free edges down into the ventricle
+//            of pushing the nearly horizontal free edges down into the ventricle; with shape=1
+//            the height of the strip leaflet's coaptation strip
 //   post     radial depth of three commissural posts (default 0: none): rigid wall strips
 //            filling the gap between neighbouring leaflets within this distance of the root
 //            wall, from the annulus to the commissure height (the interleaflet triangles and
@@ -34,6 +35,17 @@
 //            and the clamped edges leave no slit along the wall for a closed valve to leak by
 //   hcenter  element size within hcenterw of the axis from the annulus to the commissures
 //            (default: h, no refinement), where the three free edges meet when the valve closes
+//   shape    0: ellipsoid leaflets (below); 1: strip leaflets, the closed native valve's shape:
+//            each leaflet a cup whose free edge runs level at zc - edrop from its commissure to
+//            the axis, with a coaptation strip of height coapt (over a width coaptw) rising steeply
+//            to it along the gap plane, so that the aortic pressure presses neighbouring strips
+//            together and opening bends them across their thickness (no band, no posts)
+//   gapw     (shape 1) the gap between neighbouring leaflets' mid-surfaces where they meet the
+//            wall at a commissure: it narrows from gap over the last gapwl before the wall, to a
+//            slit the gap seal holds shut at rest (gapw - t below -gap_seal_gap_closed) and that
+//            contact leaves alone (gapw - t above -contact_offset)
+//   nsec, nj (shape 1) sections lofted per leaflet and points per section (12 x 16: the loft
+//            takes ~20 s; 36 x 40 ~5 min)
 // Leaflet k (k = 0, 1, 2, centre angle 90 + 120 k degrees) is the shell of thickness t about an
 // ellipsoid (semi-axes rho_l, rho_l, stretch rho_l) centred on the wall at the commissure
 // height, cut to its own 120-degree sector (less gap/2 from each dividing plane), to the lower
@@ -59,8 +71,32 @@ If (!Exists(tlayers)) tlayers = 1; EndIf
 If (!Exists(hbasew)) hbasew = 0.002; EndIf
 If (!Exists(coapt)) coapt = 0; EndIf
 If (!Exists(post)) post = 0; EndIf
+If (!Exists(shape)) shape = 0; EndIf
+If (!Exists(coaptw)) coaptw = 0.0015; EndIf
+If (!Exists(edrop)) edrop = 0.0005; EndIf
+If (!Exists(nsec)) nsec = 12; EndIf
+If (!Exists(nj)) nj = 16; EndIf
+If (!Exists(gapw)) gapw = gap; EndIf
+If (!Exists(gapwl)) gapwl = 0.004; EndIf
 If (post < 0)
   Error("valve.geo: post (the commissural posts' depth) must be >= 0");
+EndIf
+If (shape != 0 && shape != 1)
+  Error("valve.geo: shape must be 0 (ellipsoid leaflets) or 1 (strip leaflets)");
+EndIf
+If (shape == 1)
+  If (coapt <= 0 || coapt >= stretch * rho_l / 2 || coaptw <= 0)
+    Error("valve.geo: shape=1 needs a coaptation strip: coapt in (0, half the commissure height) and coaptw > 0, e.g. coapt=0.004,coaptw=0.0015");
+  EndIf
+  If (gapw > gap || gapw - t < 0.0003 || gap - t < 0.0003)
+    Error("valve.geo: shape=1 needs t + 0.3 mm < gapw <= gap (the fluid slit between neighbouring strips, at the wall and elsewhere); e.g. gap=0.002,gapw=0.00108");
+  EndIf
+  If (edrop < 0 || edrop >= coapt)
+    Error("valve.geo: edrop (how far the free edge lies below the commissure height) must lie in [0, coapt)");
+  EndIf
+  If (post > 0)
+    Error("valve.geo: shape=1 has no commissural posts (post=0): its strips meet the wall gapw apart instead");
+  EndIf
 EndIf
 // Shapes whose leaflets would intersect each other or miss the axis.
 If (gap <= 0 || gap >= Ra / 4)
@@ -133,8 +169,90 @@ EndIf
 
 // Leaflets.
 leaf() = {};
+If (shape == 1)
+  // The strip leaflet's mid-surface z(x, y) in the leaflet's own frame (x from the axis towards
+  // its sinus, y along the wall): the height of a point follows its distance d from the nearer
+  // gap plane (a smooth minimum, so that the leaflet has no crease along its middle).  Within
+  // coaptw of the plane the surface rises steeply by coapt to the level free edge at zc - edrop
+  // (S, the coaptation strip); below it the belly falls to the nadir as the cup 1 - (1 - u)^2
+  // (P, u = d / its value at the nadir).
+  sn = Sin(Pi / 3);
+  cs = Cos(Pi / 3);
+  kS = 0.0007;  // smoothing of the minimum for the strip [m]: it rounds the leaflet's tip
+  kB = 0.0006;  // and for the belly: a curvature radius ~1 mm on the leaflet's middle line
+  zfe = zc - edrop;
+  // u reaches 0.8 at the nadir, so that the cup still falls where it meets the wall (at its
+  // bottom, u = 1, the leaflet would meet the wall tangentially, in slivers); its depth bA puts the
+  // nadir at z = 0
+  dBmax = (Ra * sn - gapw / 2 - kB * Log(2)) / 0.8;
+  bA = (zfe - coapt) / (2 * 0.8 - 0.8^2);
+  Macro StripLeafletZ
+    // in: xq, yq [m]; out: zq [m]
+    // the gap narrows to gapw over the last gapwl before the wall (smoothstep)
+    _s = Min(Max((Sqrt(xq^2 + yq^2) - Ra + gapwl) / gapwl, 0), 1);
+    _g = gap - (gap - gapw) * (3 * _s^2 - 2 * _s^3);
+    _d1 = xq * sn - yq * cs - _g / 2;
+    _d2 = xq * sn + yq * cs - _g / 2;
+    _m = Min(_d1, _d2);
+    _dS = _m - kS * Log(Exp((_m - _d1) / kS) + Exp((_m - _d2) / kS));
+    _dB = _m - kB * Log(Exp((_m - _d1) / kB) + Exp((_m - _d2) / kB));
+    _v = Min(_dS / coaptw, 1);
+    _u = _dB / dBmax;
+    zq = zfe - coapt * (1 - (1 - _v)^2) - bA * (2 * _u - _u^2);
+  Return
+EndIf
 For k In {0:2}
   th = Pi / 2 + 2 * Pi * k / 3;
+  If (shape == 1)
+    // Sections x = const across the leaflet, each the closed outline of the shell (its two faces
+    // sampled densest near the gap planes), lofted into one solid and cut to the sector below.
+    xs = Max(0.5 * rcenter, gap / (2 * sn) + 0.0001);
+    xe = Ra + 0.001;
+    wires() = {};
+    For i In {0:nsec}
+      xi = xs + (xe - xs) * i / nsec;
+      ye = Min((xi * sn - gap / 2 + 0.0006) / cs, Sqrt(Max((Ra + 0.0015)^2 - xi^2, 0)) + 0.0015);
+      up() = {};
+      lo() = {};
+      For j In {0:nj}
+        yj = ye * Sin(Pi / 2 * (2 * j / nj - 1));
+        // the faces: t/2 either side along the normal (slopes by central differences)
+        xq = xi + 1e-6;
+        yq = yj;
+        Call StripLeafletZ;
+        zxp = zq;
+        xq = xi - 1e-6;
+        Call StripLeafletZ;
+        zxm = zq;
+        xq = xi;
+        yq = yj + 1e-6;
+        Call StripLeafletZ;
+        zyp = zq;
+        yq = yj - 1e-6;
+        Call StripLeafletZ;
+        zym = zq;
+        yq = yj;
+        Call StripLeafletZ;
+        zx = (zxp - zxm) / 2e-6;
+        zy = (zyp - zym) / 2e-6;
+        nn = Sqrt(1 + zx^2 + zy^2);
+        p1 = newp; Point(p1) = {xi - t / 2 * zx / nn, yj - t / 2 * zy / nn, zq + t / 2 / nn};
+        p2 = newp; Point(p2) = {xi + t / 2 * zx / nn, yj + t / 2 * zy / nn, zq - t / 2 / nn};
+        up() += p1;
+        lo() += p2;
+      EndFor
+      c1 = newc; Spline(c1) = up();
+      c2 = newc; Line(c2) = {up(nj), lo(nj)};
+      c3 = newc; Spline(c3) = lo();
+      c4 = newc; Line(c4) = {lo(0), up(0)};
+      w = newll; Wire(w) = {c1, c2, -c3, c4};
+      wires() += w;
+    EndFor
+    v = newv;
+    ThruSections(v) = {wires()};
+    shell() = {v};
+    Rotate {{0, 0, 1}, {0, 0, 0}, th} { Volume{shell()}; }
+  Else
   ro = rho_l + t / 2;
   ri = rho_l - t / 2;
   Sphere(20 + 10 * k) = {0, 0, 0, 1};
@@ -166,19 +284,36 @@ For k In {0:2}
   If (coapt > 0)
     shell() = BooleanUnion{ Volume{shell()}; Delete; }{ Volume{fins()}; Delete; };
   EndIf
+  EndIf
   // The sector: two half-spaces bounded by the dividing planes at th +- 60 degrees, each moved
   // gap/2 into the sector, and the lower half (z < zc).
-  Box(22 + 10 * k) = {gap / 2, -big, -Lin, big, 2 * big, zc + Lin};
+  // (the strip leaflet's free edge is the horizontal cut at zfe: its steep strip cut by the gap
+  // plane would leave a long sliver face, so the planes move out past its ventricular face)
+  gcut = gap / 2;
+  ztop = zc;
+  If (shape == 1)
+    gcut = 0.00015;
+    ztop = zfe;
+  EndIf
+  Box(22 + 10 * k) = {gcut, -big, -Lin, big, 2 * big, ztop + Lin};
   Rotate {{0, 0, 1}, {0, 0, 0}, th + Pi / 3 - Pi / 2} { Volume{22 + 10 * k}; }
-  Box(23 + 10 * k) = {gap / 2, -big, -Lin, big, 2 * big, zc + Lin};
+  Box(23 + 10 * k) = {gcut, -big, -Lin, big, 2 * big, ztop + Lin};
   Rotate {{0, 0, 1}, {0, 0, 0}, th - Pi / 3 + Pi / 2} { Volume{23 + 10 * k}; }
-  Cylinder(24 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + zc, Ra};
+  Cylinder(24 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + ztop, Ra};
   Rotate {{0, 0, 1}, {0, 0, 0}, Pi / 6} { Volume{24 + 10 * k}; }
   sector() = BooleanIntersection{ Volume{22 + 10 * k}; Delete; }{ Volume{23 + 10 * k}; Delete; };
   sector() = BooleanIntersection{ Volume{sector()}; Delete; }{ Volume{24 + 10 * k}; Delete; };
   If (rcenter > 0) // the leaflets end on a circle of radius rcenter about the axis
     Cylinder(25 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + zc, rcenter};
     sector() = BooleanDifference{ Volume{sector()}; Delete; }{ Volume{25 + 10 * k}; Delete; };
+  EndIf
+  If (shape == 1 && post > 0)
+    // the strip's ventricular face reaches past the gap plane: the posts clip it there
+    For j In {0:2}
+      Box(50 + j) = {-gap / 2, Ra - post, 0, gap, post + Ra, zc};
+      Rotate {{0, 0, 1}, {0, 0, 0}, -Pi / 3 + 2 * Pi * j / 3} { Volume{50 + j}; }
+    EndFor
+    sector() = BooleanDifference{ Volume{sector()}; Delete; }{ Volume{50, 51, 52}; Delete; };
   EndIf
   leaf() += BooleanIntersection{ Volume{shell()}; Delete; }{ Volume{sector()}; Delete; };
 EndFor
