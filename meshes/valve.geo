@@ -216,7 +216,8 @@ For k In {0:2}
       lo() = {};
       For j In {0:nj}
         yj = ye * Sin(Pi / 2 * (2 * j / nj - 1));
-        // the faces: t/2 either side along the normal (slopes by central differences)
+        // the faces: t/2 either side along the normal (slopes by central differences); each
+        // Call on a line of its own: gmsh 4.8 drops what follows a Call on the same line
         xq = xi + 1e-6;
         yq = yj;
         Call StripLeafletZ;
