@@ -308,14 +308,6 @@ For k In {0:2}
     Cylinder(25 + 10 * k) = {0, 0, -Lin, 0, 0, Lin + zc, rcenter};
     sector() = BooleanDifference{ Volume{sector()}; Delete; }{ Volume{25 + 10 * k}; Delete; };
   EndIf
-  If (shape == 1 && post > 0)
-    // the strip's ventricular face reaches past the gap plane: the posts clip it there
-    For j In {0:2}
-      Box(50 + j) = {-gap / 2, Ra - post, 0, gap, post + Ra, zc};
-      Rotate {{0, 0, 1}, {0, 0, 0}, -Pi / 3 + 2 * Pi * j / 3} { Volume{50 + j}; }
-    EndFor
-    sector() = BooleanDifference{ Volume{sector()}; Delete; }{ Volume{50, 51, 52}; Delete; };
-  EndIf
   leaf() += BooleanIntersection{ Volume{shell()}; Delete; }{ Volume{sector()}; Delete; };
 EndFor
 
