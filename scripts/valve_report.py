@@ -27,6 +27,11 @@ starts, the earlier one's rows stop.  Prints (markdown)
     cycle that leak gives over a diastole of S seconds (default 0.79: the paper's inflow, Fig. 7,
     stops at 0.309 s of its 1.1 s cycle) against a stroke volume of ML millilitres (default
     102.1: that table's);
+  - per cycle, the periodic state: stroke volume, end-diastolic aortic pressure (the outlet's at
+    the cycle's end, with --p-offset) and regurgitant volume, their change from the cycle before,
+    and the first cycle from which each changes by less than 2 %;
+  - per cycle, where the time goes: opening (to 90 % of the peak orifice), ejection (to the
+    closure), closure ringing (50 ms), diastole: steps, their wall time, remeshes and theirs;
   - cost: steps, cut steps, s/step, Newton and Krylov per step, remeshes and their share of the
     wall time, peak memory per rank."""
 import json
@@ -164,6 +169,7 @@ def regurgitation(rows):
     return ejected, rows[tc]["time"] if tc is not None else None, closing, after, before, reopened
 
 
+per_cycle = {}  # cycle -> (ejected, regurgitant [m^3], outlet pressure at its end [Pa], complete)
 print(f"\n| cycle | closed at [ms] (--closed {closed_text}) | ejected [mL] | closing [mL] | leakage after "
       "closure [mL] | leakage before opening [mL] | regurgitant [mL] | regurgitant fraction |")
 print("|---|---|---|---|---|---|---|---|")
@@ -174,6 +180,8 @@ for c in sorted(cycles):
     if reopened is not None:
         shut += f", open again at {reopened*1e3:.1f}"
     reg = closing + after + before
+    complete = rows[-1]["time"] >= (c + 1) * period - 1.5 * rows[-1]["dt"]
+    per_cycle[c] = (f, reg, rows[-1].get("outlet_p"), complete)
     print(f"| {c + 1} | {shut} | {f*1e6:.2f} | {closing*1e6:.3f} | {after*1e6:.3f} | {before*1e6:.3f} | {reg*1e6:.3f} | "
           f"{reg/f*100 if f else 0:.2f} % |")
 
@@ -217,6 +225,7 @@ def clinical(rows):
     l10, l90 = lo + 0.1 * (hi - lo), lo + 0.9 * (hi - lo)
     a, b = crossing(t, goa, l10, True, 0, g_top + 1), crossing(t, goa, l90, True, 0, g_top + 1)
     out["opening_ms"] = (b - a) * 1e3 if a is not None and b is not None else None
+    out["_opened"], out["_closed"] = b, t[tc] if tc < len(rows) else None  # phase bounds (cost)
     lo2 = np.nanmin(goa[g_top:])
     l10c, l90c = lo2 + 0.1 * (hi - lo2), lo2 + 0.9 * (hi - lo2)
     last90 = max((i for i in range(g_top, len(rows)) if goa[i] >= l90c), default=g_top)
@@ -337,3 +346,47 @@ print(f"\nsteps {steps} (cut below {dt0*1e3:g} ms: {sum(r['dt'] < 0.99 * dt0 for
       f"remeshes {len(rem)} ({remesh_s:.0f} s = {remesh_s/(wall+remesh_s)*100:.1f} % of step + remesh time, "
       f"{remesh_s/max(len(rem),1):.1f} s each); peak memory {peak:.0f} MB per rank "
       f"({len(summaries)} of {len(args)} pieces with a summary)")
+
+
+# Periodic state: the cycle from which stroke volume, end-diastolic aortic pressure (the outlet's
+# at the cycle's end) and regurgitant volume each change by less than 2 % from the cycle before.
+print("\n| cycle | stroke [mL] | end-diastolic aorta [mmHg] | regurgitant [mL] | change from the cycle before |")
+print("|---|---|---|---|---|")
+periodic, before = None, None
+for c, (f, reg, p_end, complete) in sorted(per_cycle.items()):
+    now = (f, (p_end / 133.322 + p_offset) if p_end is not None else None, reg)
+    change = "-"
+    if not complete:
+        change = f"incomplete (to {max(r['time'] for r in mon)*1e3:.1f} ms)"
+    elif before is not None:  # a run without an outlet pressure compares the two volumes
+        d = {k: abs(a - b) / abs(b) * 100 if b else float("inf")
+             for k, a, b in zip(("stroke", "aorta", "regurgitant"), now, before) if a is not None and b is not None}
+        change = ", ".join(f"{k} {v:.1f} %" for k, v in d.items())
+        if periodic is None and max(d.values()) < 2:
+            periodic = c + 1
+    print(f"| {c + 1} | {f*1e6:.2f} | " + (f"{now[1]:.1f}" if now[1] is not None else "-") +
+          f" | {reg*1e6:.3f} | {change} |")
+    before = now if complete else None
+print(f"\nperiodic (each change < 2 %): {'from cycle ' + str(periodic) if periodic else 'not yet'}")
+
+# Where the time goes, per cycle: opening (to 90 % of the peak orifice), ejection (to the closure,
+# --closed), closure ringing (the 50 ms after it), diastole (the rest); steps' and remeshes' wall.
+when = {r["step"]: r["time"] for r in mon}
+print("\n| cycle | phase | from [ms] | to [ms] | steps | step wall [min] | remeshes | remesh wall [min] |")
+print("|---|---|---|---|---|---|---|---|")
+for c, f in figs.items():
+    t0, t1 = c * period, (c + 1) * period
+    bounds = [t0, f.get("_opened"), f.get("_closed"), f["_closed"] + 0.05 if f.get("_closed") else None, t1]
+    names_ph = ["opening", "ejection", "closure ringing", "diastole"]
+    for i, name in enumerate(names_ph):
+        lo = bounds[i]
+        hi = next((b for b in bounds[i + 1:] if b is not None), t1)
+        if lo is None:
+            continue
+        hi = min(hi, t1)
+        inside = [r for r in mon if lo < r["time"] <= hi + 1e-12 and c == int(r["time"] / period - 1e-12)]
+        if not inside:
+            continue
+        rm = [x for x in rem if lo < when.get(x["step"], x.get("time", -1)) <= hi + 1e-12]
+        print(f"| {c + 1} | {name} | {lo*1e3:.1f} | {inside[-1]['time']*1e3:.1f} | {len(inside)} | "
+              f"{sum(r['step_seconds'] for r in inside)/60:.1f} | {len(rm)} | {sum(x['seconds'] for x in rm)/60:.1f} |")

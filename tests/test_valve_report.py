@@ -1,10 +1,11 @@
 """scripts/valve_report.py's per-cycle volumes on a synthetic monitor.csv with known integrals:
-two cycles of 1.1 s, each a half-sine ejection (peak 20 L/min over 0.3 s; the ejected volume, not the closed
+three cycles of 1.1 s, each a half-sine ejection (peak 20 L/min over 0.3 s; the ejected volume, not the closed
 valve's forward swings), a closing backflow of
 5 L/min for 30 ms, then a closed valve (contact_pairs 200) leaking 0.5 L/min under a ringing of
 +-2 L/min over whole periods (it must count only by its net); the second cycle starts closed and
 leaks until its opening at 50 ms, and opens again 28 ms before its end (5 L/min forward: the
-next ejection started early, ejected volume, not a negative leak).  Also: a condition on a
+next ejection started early, ejected volume, not a negative leak); the third repeats the second,
+so the run is periodic from cycle 3; cycle 1's phases hold known numbers of steps.  Also: a condition on a
 missing column and a malformed one exit non-zero naming --closed.
 The clinical table of the first cycle on the same run, given an orifice that opens linearly from
 0.2 to 3.0 cm^2 over 50 ms (10-90 %: 40 ms) and closes from 0.28 to 0.32 s (32 ms), 1000 Pa across
@@ -44,12 +45,13 @@ def write_run(d):
         f.write("step,time,newton,krylov,step_seconds,dt,inlet_flux,contact_pairs,valve_goa,valve_dp,"
                 "valve_peak_velocity,valve_coaptation_height\n")
         n = int(round(T / DT))
-        for k in range(1, 2 * n + 1):
-            t, s = k * DT, (k - n * (k > n)) * DT
+        for k in range(1, 3 * n + 1):
+            c = (k - 1) // n
+            t, s = k * DT, (k - c * n) * DT
             q, pairs = flow(s)
-            if k > n and k - n <= 100:  # the second cycle starts closed for 50 ms
+            if c > 0 and k - c * n <= 100:  # the second and third cycles start closed for 50 ms
                 q, pairs = -0.5, 200
-            if k - n > REOPEN / DT + 1e-9:  # and opens again before its end
+            if c > 0 and k - c * n > REOPEN / DT + 1e-9:  # and open again before their end
                 q, pairs = 5.0, 0
             g, dp, v, ch = valve(s, q, pairs)
             f.write(f"{k},{t:.10f},3,10,1.0,{DT},{-q * LPM:.12e},{pairs},{g:.8e},{dp},{v:.8f},{ch}\n")
@@ -67,8 +69,8 @@ with tempfile.TemporaryDirectory() as d:
     check(code == 0, f"valve_report on the synthetic run: rc {code}" + ("" if code == 0 else "\n" + out))
     rows = re.findall(r"^\| (\d) \| ([0-9.]+)(?:, open again at ([0-9.]+))? \| ([0-9.]+) \| ([0-9.-]+) \| ([0-9.-]+) \| ([0-9.-]+) "
                       r"\| ([0-9.-]+) \| ([0-9.]+) % \|$", out, re.M)
-    check(len(rows) == 2, f"the split table has {len(rows)} cycle rows (2 expected)" +
-          ("" if len(rows) == 2 else ":\n" + out))
+    check(len(rows) == 3, f"the split table has {len(rows)} cycle rows (3 expected)" +
+          ("" if len(rows) == 3 else ":\n" + out))
     ml = 1e6 * LPM  # mL per (L/min x s)
     forward = 20 * 0.6 / math.pi * ml
     closing = 5 * 0.03 * ml
@@ -78,7 +80,7 @@ with tempfile.TemporaryDirectory() as d:
     for c, r in enumerate(rows):
         closed_at, f, cl, la, lb, reg, frac = (float(x) for x in r[1:2] + r[3:])
         reopened = float(r[2]) if r[2] else None
-        want_reopen = None if c == 0 else 1000 * (T + REOPEN + DT)
+        want_reopen = None if c == 0 else 1000 * (c * T + REOPEN + DT)
         check((reopened is None) == (want_reopen is None) and
               (reopened is None or abs(reopened - want_reopen) < 0.06),
               f"cycle {c + 1}: open again at {reopened} ms, expected {want_reopen}")
@@ -88,12 +90,12 @@ with tempfile.TemporaryDirectory() as d:
         # sums flow x step over the rows (right end points): within 0.05 mL of the integral here.
         f_exp = forward if c == 0 else 20 * (0.3 / math.pi) * (1 + math.cos(math.pi * 0.05 / 0.3)) * ml
         f_rows = sum(flow(k * DT)[0] for k in range(1 if c == 0 else 101, 601)) * DT * ml
-        if c == 1:
+        if c > 0:
             f_exp, f_rows = f_exp + early, f_rows + early
         for name, got, want, tol in (("ejected", f, f_rows, 0.006), ("ejected (integral)", f, f_exp, 0.05), ("closing", cl, closing, 0.001),
-                                     ("leakage after closure", la, after[c], 0.001),
-                                     ("leakage before opening", lb, before[c], 0.001),
-                                     ("regurgitant", reg, closing + after[c] + before[c], 0.002)):
+                                     ("leakage after closure", la, after[min(c, 1)], 0.001),
+                                     ("leakage before opening", lb, before[min(c, 1)], 0.001),
+                                     ("regurgitant", reg, closing + after[min(c, 1)] + before[min(c, 1)], 0.002)):
             check(abs(got - want) <= tol, f"cycle {c + 1}: {name} {got} mL, expected {want:.4f}")
         check(abs(frac - 100 * reg / f) < 0.01, f"cycle {c + 1}: fraction {frac} % of {reg}/{f}")
     # The clinical table's first cycle (rows at the steps' ends: within a step of the exact times).
@@ -107,6 +109,18 @@ with tempfile.TemporaryDirectory() as d:
                             ("closing 90-10 % [ms]", 32.0, 0.6), ("coaptation height [mm]", 3.0, 1e-3)):
         val = float(got[name]) if got.get(name, "-") != "-" else None
         check(val is not None and abs(val - want) <= tol, f"clinical table, cycle 1: {name} {val}, expected {want}")
+    # Periodic state: cycle 2 ejects less than cycle 1 (its opening 50 ms late), cycle 3 repeats it.
+    strokes = [float(x) for x in re.findall(r"^\| \d \| ([0-9.]+) \| - \| [0-9.]+ \| ", out, re.M)]
+    change = re.search(r"^\| 2 \| [^|]+\| - \| [^|]+\| stroke ([0-9.]+) %", out, re.M)
+    check(len(strokes) == 3 and change is not None and
+          abs(float(change.group(1)) - abs(strokes[1] - strokes[0]) / strokes[0] * 100) < 0.1,
+          f"periodicity table: strokes {strokes}, cycle 2's change {change and change.group(1)}")
+    check("periodic (each change < 2 %): from cycle 3" in out, "periodic from cycle 3 expected:\n" + out[-1500:])
+    # Where the time goes: cycle 1's phases, 1 s per step (rows: opening to 45.05 ms, ejection to
+    # the closure at 330.5 ms, 50 ms of ringing, diastole to 1100 ms).
+    phases = dict(re.findall(r"^\| 1 \| ([a-z ]+) \| [0-9.]+ \| [0-9.]+ \| (\d+) \| ", out, re.M))
+    want = {"opening": "90", "ejection": "571", "closure ringing": "100", "diastole": "1439"}
+    check(phases == want, f"cycle 1's phases {phases}, expected {want}")
     for bad, word in (("seal_cells>3", "no monitor column 'seal_cells'"),
                       ("contact_pairs=3", "COLUMN>VALUE or COLUMN<VALUE")):
         code, out = report(d, "--closed", bad)
