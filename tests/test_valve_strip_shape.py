@@ -14,8 +14,9 @@ gap - t = 1.55 mm apart and narrow to gapw - t = 0.63 mm where they meet the wal
    the gaps narrower than the contact offset counted closed below 2 % of the annulus (1.32
    measured), no fluid cell inverted.  ~10 min on 2 cores: the steps are cut to 0.125 ms as the
    strips meet.
-3. Bad input: shape=1 with commissural posts, and a wall gap gapw too narrow for fluid between
-   the strips, are refused with one line and exit 2 before any step."""
+3. Bad input: shape=1 with commissural posts, a wall gap gapw too narrow for fluid between the
+   strips, and a contact offset wider than the mesh's narrowest gap are refused with one line and
+   exit 2 before any step."""
 from fsitest import check, finish, run, SRC
 import math
 import os
@@ -62,4 +63,11 @@ for params, what in (("shape=1,coapt=0.004,gap=0.002,gapw=0.00108,post=0.0025", 
     print(lines[:1])
     check(b.code == 2 and len(lines) >= 1 and "valve.geo: shape=1" in lines[0],
           f"{what}: refused with one line naming the parameter, exit 2 (exit {b.code})")
+# A contact offset wider than the mesh's narrowest gap between contact pieces (the wall slits,
+# 0.61 mm) would push the leaflets apart at the first step: refused before it.
+b = run(DIASTOLE, np=1, presets=(), extra=QUIET + ["-contact_offset", "0.0007", "-ts_max_steps", "1"])
+lines = [ln for ln in b.out.splitlines() if "error" in ln]
+print(lines[:1])
+check(b.code == 2 and len(lines) >= 1 and "-contact_offset" in lines[0] and "smallest gap" in lines[0],
+      f"contact offset 0.7 mm: refused with one line naming -contact_offset, exit 2 (exit {b.code})")
 finish()

@@ -342,7 +342,7 @@ void make_contact(PhysicsBuild &b) {
                      "mesh as built (" +
                      std::to_string(g) +
                      " m): at rest they would be pushed apart; use a smaller offset or "
-                     "mesh a wider gap (valve.geo: gap)");
+                     "mesh a wider gap (valve.geo: gap, and gapw for the strip leaflets)");
   b.contact = c.get();
   b.modules.push_back(std::move(c));
 }
