@@ -371,7 +371,6 @@ print(f"\nperiodic (each change < 2 %): {'from cycle ' + str(periodic) if period
 
 # Where the time goes, per cycle: opening (to 90 % of the peak orifice), ejection (to the closure,
 # --closed), closure ringing (the 50 ms after it), diastole (the rest); steps' and remeshes' wall.
-when = {r["step"]: r["time"] for r in mon}
 print("\n| cycle | phase | from [ms] | to [ms] | steps | step wall [min] | remeshes | remesh wall [min] |")
 print("|---|---|---|---|---|---|---|---|")
 for c, f in figs.items():
@@ -387,6 +386,6 @@ for c, f in figs.items():
         inside = [r for r in mon if lo < r["time"] <= hi + 1e-12 and c == int(r["time"] / period - 1e-12)]
         if not inside:
             continue
-        rm = [x for x in rem if lo < when.get(x["step"], x.get("time", -1)) <= hi + 1e-12]
+        rm = [x for x in rem if lo < x["time"] <= hi + 1e-12]
         print(f"| {c + 1} | {name} | {lo*1e3:.1f} | {inside[-1]['time']*1e3:.1f} | {len(inside)} | "
               f"{sum(r['step_seconds'] for r in inside)/60:.1f} | {len(rm)} | {sum(x['seconds'] for x in rm)/60:.1f} |")
