@@ -2,12 +2,13 @@
 
   scripts/study <scene> --vary mesh=coarse,medium,fine --vary dt=2e-4,1e-4,5e-5
                 [--vary preset=direct,fieldsplit_ilu] [--vary rho_inf=1,0.5,0]
-                [--qoi COLUMN:max|min|final|mean@T0-T1 ...] [--curve COLUMN] [--metric qoi|curve]
+                [--qoi COLUMN:max|min|final|mean@T0-T1|valve:NAME ...] [--curve COLUMN] [--metric qoi|curve]
                 [--target-error 1e-2] [--np 2] [--out DIR] [--plot-only] [-- app options]
 
 Runs every case of the grid (cases already finished in DIR are reused), then for each case: the
 quantities of interest (a monitor column's max/min/final, or its time-weighted mean over
-[T0, T1] s; --qoi repeated for several, the first one primary), each one's error against its
+[T0, T1] s; or valve:NAME[@CYCLE], a figure of scripts/valve_report.py --json such as
+valve:peak_flow_goa_cm2; --qoi repeated for several, the first one primary), each one's error against its
 reference, the
 difference of the monitor curve from the finest case's, and the cost (wall time, s/step,
 iterations).  The reference is the finest case, improved by Richardson extrapolation along each
@@ -141,8 +142,31 @@ def window_mean(t, v, t0, t1):
     return area / (t1 - t0)
 
 
+def valve_figure(spec, out):
+    """valve:NAME[@CYCLE]: a figure of scripts/valve_report.py --json (cycle 1 unless given)."""
+    name, _, cycle = spec[len("valve:"):].partition("@")
+    path = os.path.join(out, "valve_figures.json")
+    p = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "valve_report.py"), out, "--json", path],
+                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        sys.exit(f"study: --qoi {spec}: valve_report.py failed on {out}: {p.stderr.strip()}")
+    cycles = json.load(open(path))["cycles"]
+    c = int(cycle) if cycle.isdigit() else 1
+    if not 1 <= c <= len(cycles) or name not in cycles[c - 1]:
+        names = ", ".join(k for k in cycles[0] if k not in ("cycle", "complete")) if cycles else ""
+        sys.exit(f"study: --qoi {spec}: no figure '{name}' in cycle {c} of {out} (figures: {names})")
+    value = cycles[c - 1][name]
+    if value is None:
+        sys.exit(f"study: --qoi {spec}: the run in {out} does not reach what '{name}' needs "
+                 "(e.g. a closure for closing figures): lengthen the window (-ts_max_time)")
+    return float(value)
+
+
 def qoi_value(spec, rows, out):
-    """A quantity of interest from monitor rows: COLUMN:max|min|final|mean@T0-T1."""
+    """A quantity of interest from monitor rows: COLUMN:max|min|final|mean@T0-T1, or a valve
+    figure (valve:NAME[@CYCLE], named as in valve_report.py --json)."""
+    if spec.startswith("valve:"):
+        return valve_figure(spec, out)
     col, how = (spec.split(":", 1) + ["max"])[:2]
     if col not in rows[0]:
         sys.exit(f"study: monitor column '{col}' not in {out}/monitor.csv")
@@ -251,7 +275,7 @@ def main():
         sys.exit("study: give --qoi COLUMN:max|min|final (or a '# study-qoi:' line in the scene)")
     specs = args.qoi
     args.qoi = specs[0]  # the primary quantity: the Pareto front's and the curve's
-    curve_col = args.curve or args.qoi.split(":")[0]
+    curve_col = args.curve or ("valve_goa" if args.qoi.startswith("valve:") else args.qoi.split(":")[0])
     args.out = args.out or os.path.join(ROOT, "results", "study", os.path.basename(scene)[:-5])
     os.makedirs(args.out, exist_ok=True)
     grid = {}

@@ -18,7 +18,8 @@ starts, the earlier one's rows stop.  Prints (markdown)
     opening: the previous diastole's tail);
   - per cycle, the figures a cardiologist reads (what each means: docs/valve.md): peak and
     peak-flow orifice area, mean systolic gradient, peak transvalvular velocity, opening and
-    closing times, the diastolic orifice and coaptation height, the aortic pressure range
+    closing times (and the rapid closing phase alone, and the orifice left when the flow
+    reverses), the diastolic orifice and coaptation height, the aortic pressure range
     (--p-offset MMHG: added to the outlet pressure, for scenes in gauge; 80 for valve_pressure);
   - with --hold MS (a closed valve under a held load, from MS to the end): the leak, i.e. the mean
     flow back through the valve over whole periods of the leaflets' ringing (from the first to the
@@ -65,7 +66,8 @@ def take_text(flag, default):
         return default
     i = args.index(flag)
     if i + 1 >= len(args):
-        sys.exit(f"valve_report: {flag} needs a condition, e.g. {flag} '{default}'")
+        sys.exit(f"valve_report: {flag} needs a " + (f"condition, e.g. {flag} '{default}'" if default
+                                                      else "file name, e.g. --json figures.json"))
     value = args[i + 1]
     del args[i:i + 2]
     return value
@@ -97,6 +99,7 @@ stroke = take("--stroke", 102.1)
 closed_text = take_text("--closed", "contact_pairs>100")
 p_offset = take("--p-offset", 0.0)
 closed_terms = parse_condition(closed_text)
+json_out = take_text("--json", None)
 if diastole <= 0 or stroke <= 0:
     sys.exit("valve_report: --diastole and --stroke must be positive (seconds, millilitres), e.g. --diastole 0.79 --stroke 102.1")
 if not args:
@@ -147,8 +150,8 @@ def regurgitation(rows):
     closure), leakage after the closure (net flow back from the closure until the valve reopens:
     the rows after the last closed one, where a valve that opens before the cycle's end starts
     its next ejection, count as ejection, and any flow back there as leakage) and leakage before
-    the opening (net flow back over the rows before the peak where the valve counts as closed:
-    the tail of the previous diastole)."""
+    the opening (net flow back over the rows where the valve counts as closed before the forward
+    flow that rises to the peak starts: the tail of the previous diastole)."""
     steps = np.array([r["dt"] for r in rows])
     q = np.array([-r["inlet_flux"] for r in rows])
     vol = q * steps
@@ -159,7 +162,10 @@ def regurgitation(rows):
     if tc is not None:
         while reopen - 1 > tc and not is_closed(rows[reopen - 1]):
             reopen -= 1
-    shut_before = [i for i in range(peak) if is_closed(rows[i])]
+    # Ejection starts after the last row before the peak without forward flow, even where the
+    # leaflets still touch (they bulge forward before they part): no leakage from there on.
+    start = max((i for i in range(peak) if q[i] <= 0), default=-1)
+    shut_before = [i for i in range(start + 1) if is_closed(rows[i])]
     open_rows = np.setdiff1d(np.arange(end), shut_before)
     ejected = float(np.sum(np.maximum(vol[open_rows], 0)) + np.sum(np.maximum(vol[reopen:], 0)))
     closing = float(np.sum(np.maximum(-vol[peak + 1:end], 0)))
@@ -170,6 +176,7 @@ def regurgitation(rows):
 
 
 per_cycle = {}  # cycle -> (ejected, regurgitant [m^3], outlet pressure at its end [Pa], complete)
+record = {}  # cycle -> its named figures (--json)
 print(f"\n| cycle | closed at [ms] (--closed {closed_text}) | ejected [mL] | closing [mL] | leakage after "
       "closure [mL] | leakage before opening [mL] | regurgitant [mL] | regurgitant fraction |")
 print("|---|---|---|---|---|---|---|---|")
@@ -182,6 +189,13 @@ for c in sorted(cycles):
     reg = closing + after + before
     complete = rows[-1]["time"] >= (c + 1) * period - 1.5 * rows[-1]["dt"]
     per_cycle[c] = (f, reg, rows[-1].get("outlet_p"), complete)
+    t_end = reopened if reopened is not None else rows[-1]["time"]
+    record[c] = {"cycle": c + 1, "complete": complete, "ejected_mL": f * 1e6, "closing_mL": closing * 1e6,
+                 "leakage_mL": (after + before) * 1e6, "regurgitant_mL": reg * 1e6,
+                 "regurgitant_fraction_percent": reg / f * 100 if f else None,
+                 "closed_at_s": tc, "leak_L_min": after / (t_end - tc) * 6e4 if tc is not None and t_end > tc else None,
+                 "end_diastolic_aorta_mmHg": rows[-1]["outlet_p"] / 133.322 + p_offset
+                 if complete and "outlet_p" in rows[-1] else None}
     print(f"| {c + 1} | {shut} | {f*1e6:.2f} | {closing*1e6:.3f} | {after*1e6:.3f} | {before*1e6:.3f} | {reg*1e6:.3f} | "
           f"{reg/f*100 if f else 0:.2f} % |")
 
@@ -194,6 +208,28 @@ def crossing(t, y, level, rising, start, stop):
         if (a < level <= b) if rising else (a > level >= b):
             return t[i - 1] + (level - a) / (b - a) * (t[i] - t[i - 1])
     return None
+
+
+def rapid_closing(t, goa, start, end_time, closed):
+    """The rapid closing phase (the leaflets' fast swing that ends the slow drift of ejection,
+    Laniado 1976): 90 -> 10 % of the fall from where the closing speed (over 5 ms) first exceeds
+    20 % of its largest value before end_time, to the closed orifice. None if it cannot say."""
+    if end_time is None:
+        return None
+    u = np.arange(t[start], end_time + 1e-12, 2.5e-4)
+    if len(u) < 21:
+        return None
+    g = np.interp(u, t, goa)
+    speed = np.zeros_like(g)
+    speed[10:-10] = (g[:-20] - g[20:]) / (u[20:] - u[:-20])
+    fastest = int(np.argmax(speed))
+    slow = np.nonzero(speed[:fastest] < 0.2 * speed[fastest])[0]
+    if len(slow) == 0:
+        return None
+    top = g[slow[-1]]
+    a = crossing(u, g, closed + 0.9 * (top - closed), False, slow[-1], len(u))
+    b = crossing(t, goa, closed + 0.1 * (top - closed), False, int(np.searchsorted(t, u[slow[-1]])), len(t))
+    return (b - a) * 1e3 if a is not None and b is not None else None
 
 
 def clinical(rows):
@@ -232,20 +268,30 @@ def clinical(rows):
     c90 = crossing(t, goa, l90c, False, last90, len(rows))
     c10 = crossing(t, goa, l10c, False, last90, len(rows))
     out["closing_ms"] = (c10 - c90) * 1e3 if c10 is not None and c90 is not None else None
+    out["closing_rapid_ms"] = rapid_closing(t, goa, last90, c10, lo2)
+    # Laniado 1976: a healthy valve is shut at zero flow; how open ours is when the flow reverses.
+    rev = next((i for i in range(peak + 1, len(rows)) if q[i] <= 0), None)
+    out["goa_at_reversal_percent"] = float(goa[rev] / hi) * 100 if rev is not None else None
     shut = np.array([is_closed(r) for r in rows]) & (np.arange(len(rows)) > peak)
     ratio = col("valve_goa_contact_ratio") if "valve_goa_contact_ratio" in rows[0] else col("valve_goa_ratio")
     out["diastolic_goa_percent"] = float(np.median(ratio[shut])) * 100 if shut.any() else None
     out["coaptation_height_mm"] = (float(np.median(col("valve_coaptation_height")[shut])) * 1e3
                                    if shut.any() and "valve_coaptation_height" in rows[0] else None)
+    if "valve_leaflet_vm_max" in rows[0]:  # the largest leaflet von Mises stress, open and closed
+        vm = col("valve_leaflet_vm_max") / 1e3
+        out["leaflet_vm_systole_kPa"] = float(np.nanmax(vm[:tc])) if tc > 0 else None
+        out["leaflet_vm_diastole_kPa"] = float(np.nanmax(vm[shut])) if shut.any() else None
     return out
 
 
 names = [("peak_goa_cm2", "peak orifice [cm^2]"), ("peak_flow_goa_cm2", "orifice at peak flow +-20 ms [cm^2]"),
          ("mean_gradient_mmHg", "mean systolic gradient [mmHg]"), ("peak_velocity_m_s", "peak velocity [m/s]"),
          ("opening_ms", "opening 10-90 % [ms]"), ("closing_ms", "closing 90-10 % [ms]"),
+         ("closing_rapid_ms", "rapid closing [ms]"), ("goa_at_reversal_percent", "orifice at flow reversal [% of peak]"),
          ("diastolic_goa_percent", "closed orifice [% annulus]"),
          ("coaptation_height_mm", "coaptation height [mm]"), ("aorta_max_mmHg", "aorta max [mmHg]"),
-         ("aorta_min_mmHg", "aorta min [mmHg]")]
+         ("aorta_min_mmHg", "aorta min [mmHg]"), ("leaflet_vm_systole_kPa", "leaflet von Mises open [kPa]"),
+         ("leaflet_vm_diastole_kPa", "closed [kPa]")]
 figs = {c: clinical([r for r in mon if int(r["time"] / period - 1e-12) == c]) for c in sorted(cycles)}
 print("\n| cycle | " + " | ".join(n for _, n in names) + " |")
 print("|---|" + "---|" * len(names))
@@ -389,3 +435,12 @@ for c, f in figs.items():
         rm = [x for x in rem if lo < x["time"] <= hi + 1e-12]
         print(f"| {c + 1} | {name} | {lo*1e3:.1f} | {inside[-1]['time']*1e3:.1f} | {len(inside)} | "
               f"{sum(r['step_seconds'] for r in inside)/60:.1f} | {len(rm)} | {sum(x['seconds'] for x in rm)/60:.1f} |")
+
+if json_out:  # every figure above by name, per cycle (scripts/study's --qoi valve:NAME reads them)
+    for c, f in figs.items():
+        record[c].update({k: None if v is not None and np.isnan(v) else v for k, v in f.items() if not k.startswith("_")})
+    cost = {"steps": steps, "step_wall_s": wall, "remeshes": len(rem), "remesh_wall_s": remesh_s,
+            "peak_memory_mb_per_rank": None if np.isnan(peak) else peak}
+    with open(json_out, "w") as fh:
+        json.dump({"cycles": [record[c] for c in sorted(record)], "cost": cost}, fh, indent=1,
+                  default=lambda x: float(x))

@@ -6,15 +6,20 @@ valve's forward swings), a closing backflow of
 leaks until its opening at 50 ms, and opens again 28 ms before its end (5 L/min forward: the
 next ejection started early, ejected volume, not a negative leak); the third repeats the second,
 so the run is periodic from cycle 3; cycle 1's phases hold known numbers of steps.  Also: a condition on a
-missing column and a malformed one exit non-zero naming --closed.
+missing column and a malformed one exit non-zero naming --closed.  The figures by name (--json) and
+scripts/study's --qoi valve:NAME[@CYCLE] reading them.
 The clinical table of the first cycle on the same run, given an orifice that opens linearly from
-0.2 to 3.0 cm^2 over 50 ms (10-90 %: 40 ms) and closes from 0.28 to 0.32 s (32 ms), 1000 Pa across
+0.2 to 3.0 cm^2 over 50 ms (10-90 %: 40 ms), drifts to 2.5 cm^2 at 0.28 s and closes to 0.2 cm^2 at
+0.32 s (90-10 % of the whole swing: 136.3 ms; of the rapid fall: 32 ms; 44.0 % of the peak when
+the flow reverses, at the first row after 0.3 s), 1000 Pa across
 the valve while blood goes forward (7.50 mmHg mean), a half-sine peak velocity of 1.2 m/s, and
 3 mm of coaptation while closed."""
+import json
 import math
 import os
 import re
 import subprocess
+import sys
 import tempfile
 
 from fsitest import SRC, check, finish
@@ -35,7 +40,12 @@ def flow(s):
 
 def valve(s, q, pairs):
     """Orifice [m^2], dp [Pa], peak velocity [m/s], coaptation height [m] at s into a cycle."""
-    goa = 0.2 + 2.8 * min(s / 0.05, 1.0, max(0.0, (0.32 - s) / 0.04))
+    if s < 0.05:
+        goa = 0.2 + 2.8 * s / 0.05
+    elif s < 0.28:  # the slow drift of ejection
+        goa = 3.0 - 0.5 * (s - 0.05) / 0.23
+    else:  # the rapid closing
+        goa = max(0.2, 2.5 - 2.3 * (s - 0.28) / 0.04)
     return goa * 1e-4, 1000.0 if q > 0 else -9000.0, 1.2 * max(0.0, math.sin(math.pi * s / 0.3)), \
         0.003 if pairs else 0.0
 
@@ -106,7 +116,8 @@ with tempfile.TemporaryDirectory() as d:
     got = dict(zip(names, cells))
     for name, want, tol in (("peak orifice [cm^2]", 3.0, 1e-3), ("mean systolic gradient [mmHg]", 7.50, 0.01),
                             ("peak velocity [m/s]", 1.2, 1e-3), ("opening 10-90 % [ms]", 40.0, 0.6),
-                            ("closing 90-10 % [ms]", 32.0, 0.6), ("coaptation height [mm]", 3.0, 1e-3)):
+                            ("closing 90-10 % [ms]", 136.3, 0.6), ("rapid closing [ms]", 32.0, 0.6),
+                            ("orifice at flow reversal [% of peak]", 44.0, 0.1), ("coaptation height [mm]", 3.0, 1e-3)):
         val = float(got[name]) if got.get(name, "-") != "-" else None
         check(val is not None and abs(val - want) <= tol, f"clinical table, cycle 1: {name} {val}, expected {want}")
     # Periodic state: cycle 2 ejects less than cycle 1 (its opening 50 ms late), cycle 3 repeats it.
@@ -121,6 +132,21 @@ with tempfile.TemporaryDirectory() as d:
     phases = dict(re.findall(r"^\| 1 \| ([a-z ]+) \| [0-9.]+ \| [0-9.]+ \| (\d+) \| ", out, re.M))
     want = {"opening": "90", "ejection": "571", "closure ringing": "100", "diastole": "1439"}
     check(phases == want, f"cycle 1's phases {phases}, expected {want}")
+    # The same figures by name (--json), and scripts/study's --qoi valve:NAME[@CYCLE] reading them.
+    code, _ = report(d, "--json", os.path.join(d, "figures.json"))
+    fig = json.load(open(os.path.join(d, "figures.json")))["cycles"] if code == 0 else []
+    check(len(fig) == 3 and abs(fig[0]["peak_goa_cm2"] - 3.0) < 1e-3 and abs(fig[0]["closing_rapid_ms"] - 32.0) < 0.6
+          and abs(fig[1]["regurgitant_mL"] - (closing + after[1] + before[1])) < 0.002 and fig[2]["complete"],
+          f"--json: {fig[:1]}")
+    sys.path.insert(0, os.path.join(SRC, "scripts"))
+    import study
+    got = (study.qoi_value("valve:peak_goa_cm2", [], d), study.qoi_value("valve:leakage_mL@2", [], d))
+    check(abs(got[0] - 3.0) < 1e-3 and abs(got[1] - (after[1] + before[1])) < 0.002, f"study's valve QoIs {got}")
+    try:
+        study.qoi_value("valve:orifice", [], d)
+        check(False, "study --qoi valve:orifice (no such figure) accepted")
+    except SystemExit as e:
+        check("no figure 'orifice'" in str(e) and "peak_goa_cm2" in str(e), f"unknown valve figure: {e}")
     for bad, word in (("seal_cells>3", "no monitor column 'seal_cells'"),
                       ("contact_pairs=3", "COLUMN>VALUE or COLUMN<VALUE")):
         code, out = report(d, "--closed", bad)
