@@ -1,7 +1,7 @@
 """Wall shear on the two sides of the leaflets, for the paper's claims (Figs. 11-12): WSS on the
 ventricular (inflow) side larger than on the aortic side, OSI highest near the free edge.
   /usr/bin/python3 scripts/valve_wss_sides.py DIR [DIR ...] [--times T1,T2,...] [--surface NAME]
-                                              [--sampled T0,T1]
+                                              [--sampled T0,T1 [--write FILE_hemo.h5]]
 DIRs: one run's pieces (continued by -restart), searched for every *hemo*.xdmf they hold.
 Prints (markdown), per requested time, the output step nearest to it: area-mean and 95th
 percentile of |tau_w| on the ventricular side, the aortic side and the rims (free edge and
@@ -9,7 +9,8 @@ commissure faces across the thickness); and, for every closed window found (TAWS
 split plus OSI by distance from the free edge.  --sampled T0,T1 computes TAWSS and OSI the same
 way from the instantaneous outputs between T0 and T1 (every -out_fields_every steps, trapezoidal
 weights): an estimate for a stretch that no closed window covers (the run's own windows
-integrate every step).
+integrate every step); --write puts those TAWSS and OSI per face into an h5 file laid out as a
+run's closed window (scripts/valve_pictures renders it when it lies in the run's directory).
 
 Sides, per output file (a remesh writes its faces in its new reference's order): on the faces'
 material geometry (material_points, written since 2026-12-02) or else the sample's current one,
@@ -35,6 +36,11 @@ sampled = None
 if "--sampled" in args:
     i = args.index("--sampled")
     sampled = [float(t) for t in args[i + 1].split(",")]
+    del args[i:i + 2]
+write = None
+if "--write" in args:
+    i = args.index("--write")
+    write = args[i + 1]
     del args[i:i + 2]
 if "--surface" in args:
     i = args.index("--surface")
@@ -188,6 +194,15 @@ if sampled:
         P = f[surface]["reference_points"][:].reshape(-1, 3, 3)
     indices.append(((ts[0], ts[-1]), f"sampled, {len(ts)} instantaneous outputs",
                     classify(M if M is not None else P), {"tawss": tawss, "wss_magnitude_mean": mean, "osi": osi}))
+    if write:
+        with h5py.File(write, "w") as f:
+            g = f.create_group(surface)
+            g["material_points"] = (M if M is not None else P).reshape(-1, 3)
+            w = g.create_group("window_sampled")
+            w["interval"] = np.array([ts[0], ts[-1]])
+            w["tawss"], w["osi"], w["wss_magnitude_mean"] = tawss, osi, mean
+elif write:
+    sys.exit("valve_wss_sides.py: --write needs --sampled T0,T1")
 for (t0, t1), what, geo, q in indices:
     print(f"### TAWSS and OSI {t0:.4f}-{t1:.4f} s ({what}; {geo['check']})\n")
     print("| side | TAWSS area mean [Pa] | mean \\|tau_w\\| [Pa] | OSI area mean | OSI 95th pct |\n|---|---|---|---|---|")

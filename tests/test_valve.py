@@ -2,7 +2,8 @@
 the inlet flux equals the tabulated Q(t) to 1e-10 at every step, the leaflets move downstream,
 the transvalvular pressure drop is positive in forward flow, the orifice area starts at the
 reference gap's share of the annulus, mesh quality is reported every step, and
-scripts/valve_wss_sides.py splits the leaflets' wall shear into their two sides."""
+scripts/valve_wss_sides.py splits the leaflets' wall shear into their two sides and writes its
+sampled TAWSS and OSI for the pictures."""
 import math
 import os
 import re
@@ -57,7 +58,8 @@ if rows:
     # geometry written with the faces): both sides found, partners across the thickness on the
     # other side, wall shear reported on each.
     ws = subprocess.run([sys.executable, os.path.join(SRC, "scripts", "valve_wss_sides.py"), r.dir,
-                         "--times", "0.0015", "--sampled", "0,0.0015"], capture_output=True, text=True)
+                         "--times", "0.0015", "--sampled", "0,0.0015", "--write",
+                         os.path.join(r.dir, "sampled_hemo.h5")], capture_output=True, text=True)
     print(ws.stdout[-1500:], ws.stderr[-500:])
     m = re.search(r"sides from the material geometry: (\d+) ventricular, (\d+) aortic, (\d+) rim faces; "
                   r"partner across the thickness on the other side: (\d+) of (\d+)", ws.stdout)
@@ -68,4 +70,11 @@ if rows:
               f"both leaflet sides found ({v} ventricular, {a} aortic), partners opposite ({good} of {sided})")
         means = re.findall(r"^\| (ventricular|aortic) \| \d+ \| [\d.]+ \| ([\d.]+) \|", ws.stdout, re.M)
         check(len(means) == 2 and all(float(x) > 0 for _, x in means), f"wall shear on both sides {means}")
+        # --write: the sampled TAWSS and OSI per face, laid out as a closed window for the pictures.
+        import h5py
+        with h5py.File(os.path.join(r.dir, "sampled_hemo.h5"), "r") as f:
+            n = f["interface/material_points"].shape[0] // 3
+            w = f["interface/window_sampled"]
+            ok = w["tawss"].shape == (n,) and w["osi"].shape == (n,) and 0 <= w["osi"][:].min() <= w["osi"][:].max() <= 0.5
+        check(ok and n == v + a + rim, f"--write: TAWSS and OSI on all {v + a + rim} faces ({n} written)")
 finish()
