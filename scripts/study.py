@@ -142,15 +142,20 @@ def window_mean(t, v, t0, t1):
     return area / (t1 - t0)
 
 
+VALVE_FIGURES = {}  # case directory -> valve_report.py's per-cycle figures (one report per case)
+
+
 def valve_figure(spec, out):
     """valve:NAME[@CYCLE]: a figure of scripts/valve_report.py --json (cycle 1 unless given)."""
     name, _, cycle = spec[len("valve:"):].partition("@")
-    path = os.path.join(out, "valve_figures.json")
-    p = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "valve_report.py"), out, "--json", path],
-                       stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if p.returncode != 0:
-        sys.exit(f"study: --qoi {spec}: valve_report.py failed on {out}: {p.stderr.strip()}")
-    cycles = json.load(open(path))["cycles"]
+    if out not in VALVE_FIGURES:
+        path = os.path.join(out, "valve_figures.json")
+        p = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "valve_report.py"), out, "--json", path],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if p.returncode != 0:
+            sys.exit(f"study: --qoi {spec}: valve_report.py failed on {out}: {p.stderr.strip()}")
+        VALVE_FIGURES[out] = json.load(open(path))["cycles"]
+    cycles = VALVE_FIGURES[out]
     c = int(cycle) if cycle.isdigit() else 1
     if not 1 <= c <= len(cycles) or name not in cycles[c - 1]:
         names = ", ".join(k for k in cycles[0] if k not in ("cycle", "complete")) if cycles else ""

@@ -100,6 +100,8 @@ closed_text = take_text("--closed", "contact_pairs>100")
 p_offset = take("--p-offset", 0.0)
 closed_terms = parse_condition(closed_text)
 json_out = take_text("--json", None)
+if json_out and not os.path.isdir(os.path.dirname(os.path.abspath(json_out))):
+    sys.exit(f"valve_report: --json {json_out}: its directory does not exist")
 if diastole <= 0 or stroke <= 0:
     sys.exit("valve_report: --diastole and --stroke must be positive (seconds, millilitres), e.g. --diastole 0.79 --stroke 102.1")
 if not args:

@@ -40,6 +40,8 @@ if "--sampled" in args:
 write = None
 if "--write" in args:
     i = args.index("--write")
+    if i + 1 >= len(args) or not os.path.isdir(os.path.dirname(os.path.abspath(args[i + 1]))):
+        sys.exit("valve_wss_sides.py: --write needs a file in an existing directory, e.g. --write DIR/sampled_hemo.h5")
     write = args[i + 1]
     del args[i:i + 2]
 if "--surface" in args:
