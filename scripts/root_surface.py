@@ -182,6 +182,60 @@ def annulus_frame(comm, nadir):
     return centre, n, radius, ca, na
 
 
+def load_root(surface, landmarks, unit=None, tol=1.0):
+    """Read and check a root surface and its landmarks; raises BadInput naming the problem.
+    Returns a dict [m]: vtx, tris, landmarks (commissures, sinus_bottoms: 3x3), centre, axis,
+    radius, commissure and nadir angles [deg] from nadir 0, their distances from the surface,
+    ends [(offset along the axis, centre, mean radius)], inlet first, unit."""
+    try:
+        marks = json.load(open(landmarks))
+    except (OSError, ValueError) as e:
+        raise BadInput(f"{landmarks}: cannot read it as JSON ({e})")
+    unit = unit or marks.get("unit", "mm")
+    if unit not in UNITS:
+        raise BadInput(f"unit '{unit}' unknown: use --unit mm, cm or m")
+    scale = UNITS[unit]
+    pts = {}
+    for k in ("commissures", "sinus_bottoms"):
+        v = np.asarray(marks.get(k, []), dtype=float) * scale
+        if v.shape != (3, 3):
+            raise BadInput(f"{landmarks}: '{k}' must list 3 points [x, y, z] (in {unit})")
+        pts[k] = v
+    centre, axis, radius, ca, na = annulus_frame(pts["commissures"], pts["sinus_bottoms"])
+    if not 0.005 <= radius <= 0.025:
+        raise BadInput(f"the annulus radius is {radius * 1e3:.3g} mm in unit '{unit}' (5-25 mm expected): "
+                       "give the surface's unit with --unit (mm, cm or m)")
+    vtx, tris = read_surface(surface, scale)
+    loops = boundary_loops(tris)
+    if len(loops) != 2:
+        raise BadInput(f"the surface has {len(loops)} open boundaries: it must be closed apart from its two open "
+                       "ends (ventricle, aorta); close the others (e.g. coronary ostia) or cut it once at each end")
+    if enclosed_volume(vtx, tris, loops) < 0:
+        raise BadInput("inverted normals: the triangles face into the blood; flip them all")
+    cross = crossing_pairs(vtx, tris)
+    if len(cross):
+        x = vtx[tris[cross[0, 0]]].mean(0) / scale
+        raise BadInput(f"the surface intersects itself ({len(cross)} triangle pairs cross, e.g. near "
+                       f"({x[0]:.4g}, {x[1]:.4g}, {x[2]:.4g}) {unit}): repair it before meshing")
+    dist = {k: [distance_to_surface(vtx, tris, p) for p in v] for k, v in pts.items()}
+    for k, ds in dist.items():
+        far = [i for i, d in enumerate(ds) if d > tol * 1e-3]
+        if far:
+            raise BadInput(f"{k[:-1].replace('_', ' ')} {far[0]} lies {ds[far[0]] * 1e3:.2f} mm from the surface (--tol {tol:g} mm): "
+                           "landmarks must lie on the wall, in the surface's unit")
+    ends = []
+    for loop in loops:
+        c = vtx[loop].mean(0)
+        r = float(np.linalg.norm(vtx[loop] - c, axis=1).mean())
+        ends.append((float(np.dot(c - centre, axis)), c, r))
+    ends.sort(key=lambda e: e[0])
+    if not (ends[0][0] < 0 < ends[1][0]):
+        raise BadInput(f"the open ends lie {ends[0][0] * 1e3:.1f} and {ends[1][0] * 1e3:.1f} mm from the "
+                       "annulus plane: one must lie on each side of it (ventricle below, aorta above)")
+    return {"vtx": vtx, "tris": tris, "landmarks": pts, "centre": centre, "axis": axis, "radius": radius,
+            "commissure_deg": ca, "nadir_deg": na, "distance": dist, "ends": ends, "unit": unit}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("surface")
@@ -191,58 +245,15 @@ def main():
     ap.add_argument("--json", help="write the frame [m] here")
     a = ap.parse_args()
     try:
-        try:
-            marks = json.load(open(a.landmarks))
-        except (OSError, ValueError) as e:
-            raise BadInput(f"{a.landmarks}: cannot read it as JSON ({e})")
-        unit = a.unit or marks.get("unit", "mm")
-        if unit not in UNITS:
-            raise BadInput(f"unit '{unit}' unknown: use --unit mm, cm or m")
-        scale = UNITS[unit]
-        pts = {}
-        for k in ("commissures", "sinus_bottoms"):
-            v = np.asarray(marks.get(k, []), dtype=float) * scale
-            if v.shape != (3, 3):
-                raise BadInput(f"{a.landmarks}: '{k}' must list 3 points [x, y, z] (in {unit})")
-            pts[k] = v
-        centre, axis, radius, ca, na = annulus_frame(pts["commissures"], pts["sinus_bottoms"])
-        if not 0.005 <= radius <= 0.025:
-            raise BadInput(f"the annulus radius is {radius * 1e3:.3g} mm in unit '{unit}' (5-25 mm expected): "
-                           "give the surface's unit with --unit (mm, cm or m)")
-        vtx, tris = read_surface(a.surface, scale)
-        loops = boundary_loops(tris)
-        if len(loops) != 2:
-            raise BadInput(f"the surface has {len(loops)} open boundaries: it must be closed apart from its two open "
-                           "ends (ventricle, aorta); close the others (e.g. coronary ostia) or cut it once at each end")
-        if enclosed_volume(vtx, tris, loops) < 0:
-            raise BadInput("inverted normals: the triangles face into the blood; flip them all")
-        cross = crossing_pairs(vtx, tris)
-        if len(cross):
-            x = vtx[tris[cross[0, 0]]].mean(0) / scale
-            raise BadInput(f"the surface intersects itself ({len(cross)} triangle pairs cross, e.g. near "
-                           f"({x[0]:.4g}, {x[1]:.4g}, {x[2]:.4g}) {unit}): repair it before meshing")
-        dist = {k: [distance_to_surface(vtx, tris, p) for p in v] for k, v in pts.items()}
-        for k, ds in dist.items():
-            far = [i for i, d in enumerate(ds) if d > a.tol * 1e-3]
-            if far:
-                raise BadInput(f"{k[:-1].replace('_', ' ')} {far[0]} lies {ds[far[0]] * 1e3:.2f} mm from the surface (--tol {a.tol:g} mm): "
-                               "landmarks must lie on the wall, in the surface's unit")
+        root = load_root(a.surface, a.landmarks, a.unit, a.tol)
     except BadInput as e:
         print(f"root_surface: {e}", file=sys.stderr)
         sys.exit(2)
-    ends = []
-    for loop in loops:
-        c = vtx[loop].mean(0)
-        r = float(np.linalg.norm(vtx[loop] - c, axis=1).mean())
-        ends.append((float(np.dot(c - centre, axis)), c, r))
-    ends.sort(key=lambda e: e[0])
-    if not (ends[0][0] < 0 < ends[1][0]):
-        print(f"root_surface: the open ends lie {ends[0][0] * 1e3:.1f} and {ends[1][0] * 1e3:.1f} mm from the "
-              "annulus plane: one must lie on each side of it (ventricle below, aorta above)", file=sys.stderr)
-        sys.exit(2)
+    vtx, tris, pts, centre, axis = root["vtx"], root["tris"], root["landmarks"], root["centre"], root["axis"]
+    ca, na, dist, ends = root["commissure_deg"], root["nadir_deg"], root["distance"], root["ends"]
     print(f"surface: {len(vtx)} vertices, {len(tris)} triangles, two open ends, normals outward, no self-intersection")
     print(f"annulus: centre {np.round(centre * 1e3, 3).tolist()} mm, axis {np.round(axis, 4).tolist()}, "
-          f"radius {radius * 1e3:.2f} mm")
+          f"radius {root['radius'] * 1e3:.2f} mm")
     for k in range(3):
         h = float(np.dot(pts['commissures'][k] - centre, axis))
         deg = lambda x: (x + 180) % 360 - 180
@@ -253,7 +264,7 @@ def main():
     for name, (z, c, r) in zip(("inlet", "outlet"), ends):
         print(f"{name}: {z * 1e3:+.1f} mm along the axis, mean radius {r * 1e3:.2f} mm")
     if a.json:
-        frame = {"centre": centre.tolist(), "axis": axis.tolist(), "radius": radius,
+        frame = {"centre": centre.tolist(), "axis": axis.tolist(), "radius": root["radius"],
                  "commissures": pts["commissures"].tolist(), "sinus_bottoms": pts["sinus_bottoms"].tolist(),
                  "inlet": {"offset": ends[0][0], "centre": ends[0][1].tolist(), "radius": ends[0][2]},
                  "outlet": {"offset": ends[1][0], "centre": ends[1][1].tolist(), "radius": ends[1][2]}}

@@ -64,10 +64,12 @@ cases += [
 cases += [("Windkessel resistance 0", ["-bc_outlet_type", "windkessel", "-bc_outlet_R_p", "0",
                                       "-bc_outlet_C", "1e-8", "-bc_outlet_R_d", "1e8"], "R_p")]
 # The valve: leaflets that would intersect (refused by valve.geo before any mesh is built), and
-# a contact offset wider than the gap the mesh leaves between the leaflets at rest.
+# a contact offset wider than the gap the mesh leaves between the leaflets at rest, an annulus
+# that is neither a circle (one radius) nor a polar curve (three or more).
 valve_cases = [
     ("leaflets intersecting", ["-mesh_params", "gap=0"], "gap"),
     ("contact offset wider than the gap", ["-contact_offset", "0.0009"], "contact_offset"),
+    ("an annulus of two radii", ["-valve_annulus_radius", "0.0125,0.012"], "valve_annulus_radius"),
 ]
 for name, extra, needle, sc in ([c + ("poiseuille",) for c in cases] +
                                 [c + ("mr_uniaxial",) for c in solid_cases] +

@@ -152,6 +152,10 @@ void load_mesh(MPI_Comm comm, Mesh &mesh) {
   std::string file;
   if (opt::has("mesh_file")) {
     file = resolve_path(opt::required_string("mesh_file"));
+    // A ready mesh overrides a .geo that an included scene file names (scripts/make_scene's
+    // scenes include the idealised valve's options).
+    for (auto name : {"mesh_geo", "mesh_h", "mesh_params", "mesh_cache_dir"})
+      if (opt::has(name)) opt::string(name, "");
   } else if (opt::has("mesh_geo")) {
     std::string geo = resolve_path(opt::required_string("mesh_geo"));
     if (!file_exists(geo)) throw InputError("mesh source " + geo + " not found: check -mesh_geo");

@@ -20,7 +20,18 @@ void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const So
   comm_ = PetscObjectComm((PetscObject)space.dm);
   if (!fluid || !solid)
     throw InputError("-valve_annulus_radius needs a fluid and a solid (-physics fluid,solid)");
-  R_ = opt::required_positive("valve_annulus_radius");
+  // One radius: a circle.  N >= 3: a closed polar curve, radius k at angle 2 pi k / N from e1
+  // (an annulus that is not round, e.g. a patient's: scripts/make_scene writes it).
+  radii_ = opt::reals("valve_annulus_radius");
+  if (radii_.size() == 2 || radii_.empty() || *std::min_element(radii_.begin(), radii_.end()) <= 0)
+    throw InputError("option -valve_annulus_radius needs one radius [m] or N >= 3 positive radii "
+                     "at equal angles from the annulus frame's first axis");
+  R_ = *std::max_element(radii_.begin(), radii_.end());
+  annulus_area_ = 0;
+  for (size_t k = 0; k < radii_.size(); ++k) { // 1/2 integral of r(phi)^2, r linear in phi
+    const double a = radii_[k], b = radii_[(k + 1) % radii_.size()];
+    annulus_area_ += M_PI / radii_.size() * (a * a + a * b + b * b) / 3;
+  }
   if (opt::has("valve_center")) c_ = read_point("valve_center");
   axis_ = {0, 0, 1};
   if (opt::has("valve_axis")) read_direction("valve_axis", axis_.data());
@@ -41,7 +52,8 @@ void ValveMonitors::setup(const Space &space, const FluidModule *fluid, const So
     throw InputError("option -valve_dp_planes needs two axial positions a,b [m] from the annulus "
                      "centre, upstream a < 0 and downstream b > 0");
   down_at_ = planes[1];
-  const double rp = opt::positive("valve_dp_radius", 0.8 * R_);
+  const double rp =
+      opt::positive("valve_dp_radius", 0.8 * *std::min_element(radii_.begin(), radii_.end()));
   // Disc samples: rings of equal width, 6 i points on ring i, each with its ring area share.
   const int rings = 6;
   for (int side = 0; side < 2; ++side) {
@@ -173,8 +185,19 @@ std::vector<double> ValveMonitors::coaptation(const std::vector<ContactModule::T
   return {std::max(height, 0.0), std::max(length, 0.0)};
 }
 
-// Raster of the annulus disc; a pixel is covered when its centre lies in the projection of a
-// face of a deformed leaflet cell (the union of a tetrahedron's face projections is its shadow).
+bool ValveMonitors::in_annulus(double px, double py) const {
+  const double r2 = px * px + py * py;
+  if (radii_.size() == 1) return r2 < R_ * R_;
+  double s = std::atan2(py, px) / (2 * M_PI);
+  s = (s < 0 ? s + 1 : s) * radii_.size();
+  const size_t k = std::min((size_t)s, radii_.size() - 1);
+  const double w = s - k, r = (1 - w) * radii_[k] + w * radii_[(k + 1) % radii_.size()];
+  return r2 < r * r;
+}
+
+// Raster of the annulus disc (or polar curve); a pixel is covered when its centre lies in the
+// projection of a face of a deformed leaflet cell (the union of a tetrahedron's face projections is
+// its shadow).
 std::array<double, 2> ValveMonitors::orifice_area(const std::vector<double> &x) const {
   const int n = pixels_;
   const double hpix = 2 * R_ / n;
@@ -228,7 +251,7 @@ std::array<double, 2> ValveMonitors::orifice_area(const std::vector<double> &x) 
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double px = -R_ + (i + 0.5) * hpix, py = -R_ + (j + 0.5) * hpix;
-      if (px * px + py * py >= R_ * R_) continue;
+      if (!in_annulus(px, py)) continue;
       open += !all[size_t(i) * n + j];
       open_grown += !grown[size_t(i) * n + j];
     }
@@ -301,7 +324,7 @@ std::vector<double> ValveMonitors::evaluate(const FieldView &view) {
   double loc[2] = {umax, vm}, glob[2];
   MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_MAX, comm_);
   const std::array<double, 2> goa = orifice_area(x);
-  const double disc = M_PI * R_ * R_;
+  const double disc = annulus_area_;
   std::vector<double> v = {pu,      pd,      pu - pd,  goa[0],  goa[0] / disc,
                            glob[0], glob[1], vpeak[0], vpeak[1]};
   if (touching_gap_ > 0) v.push_back(goa[1] / disc);
@@ -319,7 +342,8 @@ std::unique_ptr<Monitor> make_valve_monitors(const MonitorSetup &m) {
 OptionSection valve_monitor_options() {
   return {"Valve monitors",
           {{"valve_annulus_radius", "", "m",
-            "valve monitors on: dp, orifice area, leaflet u and stress"},
+            "valve monitors on: dp, orifice area, leaflet u and stress; N >= 3 radii: a polar "
+            "annulus, radius k at 2 pi k/N from the frame's first axis"},
            {"valve_center", "0,0,0", "m", "annulus centre"},
            {"valve_axis", "0,0,1", "-", "valve axis (flow direction)"},
            {"valve_dp_planes", "", "m", "axial positions a < 0 < b of the pressure discs"},

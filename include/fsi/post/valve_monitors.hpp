@@ -57,6 +57,8 @@ private:
   double plane_mean_pressure(const std::vector<Sample> &plane, const PetscScalar *u) const;
   // {area, area with gaps narrower than touching_gap_ closed} [m^2]; x: deformed solid vertices
   std::array<double, 2> orifice_area(const std::vector<double> &x) const;
+  // Whether a point of the annulus plane (coordinates along e1_, e2_) lies inside the annulus.
+  bool in_annulus(double px, double py) const;
   // {largest |v|, its axial position} over the fluid nodes between the annulus and down_at_.
   std::array<double, 2> peak_velocity(const PetscScalar *u, const std::vector<double> &x) const;
   const Space *space_ = nullptr;
@@ -66,7 +68,9 @@ private:
   ContactModule *contact_ = nullptr;
   double touching_gap_ = 0; // the contact offset [m] (0: no contact)
   bool active_ = false;
-  double R_ = 0;
+  double R_ = 0;              // the annulus's largest radius (the raster's half-width)
+  std::vector<double> radii_; // one (a circle) or N at equal angles from e1_ [m]
+  double annulus_area_ = 0;   // [m^2]
   std::array<double, 3> c_{}, axis_{}, e1_{}, e2_{};
   std::vector<Sample> up_, down_;
   int pixels_ = 400;
