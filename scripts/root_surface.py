@@ -1,8 +1,9 @@
 """A patient's aortic-root surface, read and checked for a valve scene (docs/patient_valve.md):
-  /usr/bin/python3 scripts/root_surface.py ROOT.stl LANDMARKS.json [--unit mm|cm|m] [--tol MM]
+  /usr/bin/python3 scripts/root_surface.py ROOT LANDMARKS.json [--unit mm|cm|m] [--tol MM]
                                             [--json FRAME.json]
-ROOT.stl (binary or ASCII; read by gmsh) is the lumen's wall, closed apart from its two open
-ends (the ventricular and the aortic cut), normals pointing out of the blood.  LANDMARKS.json, in
+ROOT (STL, binary or ASCII, legacy VTK or gmsh .msh, read by gmsh; VTP, read by VTK) is the
+lumen's wall, closed apart from its two open ends (the ventricular and the aortic cut), normals
+pointing out of the blood.  LANDMARKS.json, in
 the surface's unit: {"commissures": [3 points], "sinus_bottoms": [3 points]} (the leaflets'
 nadirs), counter-clockwise about the flow direction, nadir k between commissures k and k+1;
 "unit" there or --unit (default mm).  Prints the annulus (the plane through the nadirs: centre,
@@ -15,6 +16,7 @@ the other way or into the blood, a self-intersecting surface, landmarks farther 
 import argparse
 import json
 import math
+import os
 import sys
 
 import numpy as np
@@ -26,8 +28,40 @@ class BadInput(Exception):
     pass
 
 
+SURFACE_FORMATS = (".stl", ".vtp", ".vtk", ".msh")  # .vtp through VTK's reader, the others through gmsh's
+
+
+def read_vtp(path):
+    """Vertices and triangles of a VTK XML PolyData file (polygons split into triangles)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkCommonCore import vtkObject
+    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+    vtkObject.GlobalWarningDisplayOff()  # an unreadable file is reported below, in one line
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    tri = vtkTriangleFilter()
+    tri.SetInputConnection(reader.GetOutputPort())
+    tri.Update()
+    poly = tri.GetOutput()
+    if poly.GetNumberOfPoints() == 0 or poly.GetNumberOfPolys() == 0:
+        raise BadInput(f"{path}: VTK cannot read triangles from it; give the root's wall as a VTP surface")
+    pts = vtk_to_numpy(poly.GetPoints().GetData()).astype(float)
+    return pts, vtk_to_numpy(poly.GetPolys().GetConnectivityArray()).astype(int).reshape(-1, 3)
+
+
 def read_surface(path, scale):
-    """Vertices [m] and triangles (vertex indices) of an STL file, through gmsh's reader."""
+    """Vertices [m] and triangles (vertex indices) of a surface file: STL (binary or ASCII), legacy
+    VTK or gmsh .msh through gmsh's reader, VTP through VTK's."""
+    ext = os.path.splitext(path)[1].lower()
+    if ext not in SURFACE_FORMATS:
+        raise BadInput(f"{path}: unknown surface format '{ext}'; give an STL, VTP, VTK or gmsh .msh surface")
+    if not os.path.isfile(path):
+        raise BadInput(f"{path}: no such file")
+    if ext == ".vtp":
+        pts, tris = read_vtp(path)
+        return unique_vertices(pts * scale, tris)
     import gmsh
     gmsh.initialize()
     gmsh.option.setNumber("General.Verbosity", 0)
@@ -36,17 +70,20 @@ def read_surface(path, scale):
         tags, xyz, _ = gmsh.model.mesh.getNodes()
         types, _, nodes = gmsh.model.mesh.getElements(2)
     except Exception as e:  # gmsh raises on unreadable files
-        raise BadInput(f"{path}: gmsh cannot read it as a surface ({e}); give an STL file")
+        raise BadInput(f"{path}: gmsh cannot read it as a surface ({e}); give an STL, VTK or .msh surface")
     finally:
         gmsh.finalize()
     tri = next((n for t, n in zip(types, nodes) if t == 2), None)
     if tri is None or len(tri) == 0:
-        raise BadInput(f"{path}: no triangles in it; give the root's wall as an STL surface")
+        raise BadInput(f"{path}: no triangles in it; give the root's wall as a triangulated surface")
     pts = np.asarray(xyz).reshape(-1, 3) * scale
     index = np.zeros(int(max(tags)) + 1, dtype=int)
     index[np.asarray(tags, dtype=int)] = np.arange(len(tags))
-    tris = index[np.asarray(tri, dtype=int)].reshape(-1, 3)
-    # One vertex per position (an STL repeats each vertex in every triangle that has it).
+    return unique_vertices(pts, index[np.asarray(tri, dtype=int)].reshape(-1, 3))
+
+
+def unique_vertices(pts, tris):
+    """One vertex per position (an STL repeats each vertex in every triangle that has it)."""
     key = np.round(pts / (1e-9 + 1e-7 * np.ptp(pts)), 0)
     _, first, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
     pts, tris = pts[first], inverse.reshape(-1)[tris]

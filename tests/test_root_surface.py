@@ -65,6 +65,58 @@ for name, extra in (("ideal", []), ("asym", ["--asymmetric", "--ascii"])):
           f"{name}: ends at {frame['inlet']['offset']}, {frame['outlet']['offset']} m (-0.015, 0.066875)")
     check("no self-intersection" in out, f"{name}: the surface checks pass")
 
+# The other surface formats give the same frame: gmsh .msh and legacy VTK (root_stl.py writes
+# them through gmsh), VTP (written here through VTK, 100 triangle pairs as quads, so that the
+# reader's polygon split is exercised too).
+stl_frame = json.load(open(os.path.join(d, "ideal.frame.json")))
+
+
+def write_vtp(path, pts, tris):
+    from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+    from vtkmodules.vtkCommonCore import vtkPoints
+    from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
+    from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
+    # Pair up to 100 triangles (a, b, c) with their neighbours across b-c into quads (a, b, d, c).
+    edge = {(int(t[i]), int(t[(i + 1) % 3])): k for k, t in enumerate(tris) for i in range(3)}
+    used, polys = set(), []
+    for k, (a, b, c) in enumerate(tris):
+        j = edge.get((int(c), int(b)))
+        if len(polys) < 100 and k not in used and j is not None and j not in used:
+            dd = [v for v in tris[j] if v not in (b, c)][0]
+            used.update((k, j))
+            polys.append([a, b, dd, c])
+    polys += [list(t) for k, t in enumerate(tris) if k not in used]
+    poly = vtkPolyData()
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(pts * 1e3, deep=True))
+    poly.SetPoints(points)
+    cells = vtkCellArray()
+    offsets = np.cumsum([0] + [len(q) for q in polys])
+    cells.SetData(numpy_to_vtkIdTypeArray(offsets.astype(np.int64), deep=True),
+                  numpy_to_vtkIdTypeArray(np.concatenate(polys).astype(np.int64), deep=True))
+    poly.SetPolys(cells)
+    w = vtkXMLPolyDataWriter()
+    w.SetFileName(path)
+    w.SetInputData(poly)
+    w.Write()
+
+
+ideal_pts, ideal_tris = read_surface(os.path.join(d, "ideal.stl"), 1e-3)
+for ext in (".msh", ".vtk", ".vtp"):
+    path = os.path.join(d, "ideal_as" + ext)
+    if ext == ".vtp":
+        write_vtp(path, ideal_pts, ideal_tris)
+    else:
+        code, out = script("root_stl.py", path)
+        check(code == 0, f"root_stl.py {path}: rc {code} {out.strip()}")
+    code, out = script("root_surface.py", path, os.path.join(d, "ideal.json"), "--json", path + ".json")
+    check(code == 0, f"root_surface.py on {ext}: rc {code} {out.strip()[-300:]}")
+    if code == 0:
+        f = json.load(open(path + ".json"))
+        same = all(np.allclose(f[k], stl_frame[k], atol=1e-9) for k in ("centre", "axis", "radius"))
+        same = same and abs(f["inlet"]["offset"] - stl_frame["inlet"]["offset"]) < 1e-9
+        check(same and "8056 triangles" in out, f"{ext}: the STL's frame and 8056 triangles ({out.splitlines()[0]})")
+
 # Bad input: edits of the idealised root.
 stl, marks_path = os.path.join(d, "ideal.stl"), os.path.join(d, "ideal.json")
 pts, tris = read_surface(stl, 1e-3)
@@ -83,6 +135,11 @@ cases = {
     "commissures out of order": (pts, tris, {"commissures": marks["commissures"][::-1]}, "out of order"),
     "unit m": (pts, tris, {"unit": "m"}, "annulus radius is 1.25e+04 mm"),
 }
+open(os.path.join(d, "junk.vtp"), "w").write("<VTKFile>not a surface")
+for path, word in ((os.path.join(d, "ideal.obj"), "unknown surface format '.obj'"),
+                   (os.path.join(d, "junk.vtp"), "VTK cannot read triangles")):
+    code, out = script("root_surface.py", path, marks_path)
+    check(code == 2 and len(out.strip().splitlines()) == 1 and word in out, f"{path}: rc {code}, {out.strip()}")
 for name, (p, t, edit, word) in cases.items():
     path = os.path.join(d, "bad.stl")
     write_stl(path, p, t)
