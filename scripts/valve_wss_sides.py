@@ -1,7 +1,7 @@
 """Wall shear on the two sides of the leaflets, for the paper's claims (Figs. 11-12): WSS on the
 ventricular (inflow) side larger than on the aortic side, OSI highest near the free edge.
   /usr/bin/python3 scripts/valve_wss_sides.py DIR [DIR ...] [--times T1,T2,...] [--surface NAME]
-                                              [--sampled T0,T1 [--write FILE_hemo.h5]]
+                                              [--sampled T0,T1 [--write FILE_hemo.h5]] [--json FILE]
 DIRs: one run's pieces (continued by -restart), searched for every *hemo*.xdmf they hold.
 Prints (markdown), per requested time, the output step nearest to it: area-mean and 95th
 percentile of |tau_w| on the ventricular side, the aortic side and the rims (free edge and
@@ -11,6 +11,9 @@ way from the instantaneous outputs between T0 and T1 (every -out_fields_every st
 weights): an estimate for a stretch that no closed window covers (the run's own windows
 integrate every step); --write puts those TAWSS and OSI per face into an h5 file laid out as a
 run's closed window (scripts/valve_pictures renders it when it lies in the run's directory).
+--json FILE: every window's figures by name (per side tawss_pa, wss_magnitude_mean_pa, osi_mean,
+osi_p95; osi_by_distance_from_free_edge; osi_highest_band with where: free edge < 3 mm, belly,
+base >= 10 mm; tawss_ventricular_over_aortic).
 
 Sides, per output file (a remesh writes its faces in its new reference's order): on the faces'
 material geometry (material_points, written since 2026-12-02) or else the sample's current one,
@@ -19,6 +22,7 @@ thickness (within 1.5 mm); the ventricular side is the one whose outward normal 
 or towards the axis, n_z + n_r < 0 (true of the nearly closed and of the open leaflets).  Every
 split prints how many faces have their partner across the thickness on the other side."""
 import glob
+import json
 import os
 import re
 import sys
@@ -43,6 +47,13 @@ if "--write" in args:
     if i + 1 >= len(args) or not os.path.isdir(os.path.dirname(os.path.abspath(args[i + 1]))):
         sys.exit("valve_wss_sides.py: --write needs a file in an existing directory, e.g. --write DIR/sampled_hemo.h5")
     write = args[i + 1]
+    del args[i:i + 2]
+json_out = None
+if "--json" in args:
+    i = args.index("--json")
+    if i + 1 >= len(args) or not os.path.isdir(os.path.dirname(os.path.abspath(args[i + 1]))):
+        sys.exit("valve_wss_sides.py: --json needs a file in an existing directory, e.g. --json DIR/wss_sides.json")
+    json_out = args[i + 1]
     del args[i:i + 2]
 if "--surface" in args:
     i = args.index("--surface")
@@ -205,20 +216,58 @@ if sampled:
             w["tawss"], w["osi"], w["wss_magnitude_mean"] = tawss, osi, mean
 elif write:
     sys.exit("valve_wss_sides.py: --write needs --sampled T0,T1")
-for (t0, t1), what, geo, q in indices:
-    print(f"### TAWSS and OSI {t0:.4f}-{t1:.4f} s ({what}; {geo['check']})\n")
-    print("| side | TAWSS area mean [Pa] | mean \\|tau_w\\| [Pa] | OSI area mean | OSI 95th pct |\n|---|---|---|---|---|")
+BINS = ((0, 1), (1, 3), (3, 6), (6, 10), (10, np.inf))  # distance from the free edge [mm]
+
+
+def where(lo):
+    """The name a reader gives a band of the leaflet by its distance from the free edge."""
+    return "free edge" if lo < 3 else ("belly" if lo < 10 else "base")
+
+
+def figures(geo, q):
+    """A window's named figures: per side, TAWSS, mean |tau_w| and OSI; OSI by distance from the
+    free edge, and the band where its area mean is highest."""
     side, rim, area0, d_edge = geo["side"], geo["rim"], geo["area"], geo["d_edge"]
+    out = {}
     for label, m in (("ventricular", side == -1), ("aortic", side == 1), ("rims", rim)):
         w = area0[m]
-        print(f"| {label} | {np.sum(q['tawss'][m] * w) / w.sum():.3f} | "
-              f"{np.sum(q['wss_magnitude_mean'][m] * w) / w.sum():.3f} | {np.sum(q['osi'][m] * w) / w.sum():.3f} | "
-              f"{np.percentile(q['osi'][m], 95):.3f} |")
-    print("\n| distance from the free edge [mm] | faces | OSI area mean | TAWSS area mean [Pa] |\n|---|---|---|---|")
-    for lo, hi in ((0, 1), (1, 3), (3, 6), (6, 10), (10, np.inf)):
+        out[label] = {"tawss_pa": float(np.sum(q["tawss"][m] * w) / w.sum()),
+                      "wss_magnitude_mean_pa": float(np.sum(q["wss_magnitude_mean"][m] * w) / w.sum()),
+                      "osi_mean": float(np.sum(q["osi"][m] * w) / w.sum()),
+                      "osi_p95": float(np.percentile(q["osi"][m], 95))}
+    bands = []
+    for lo, hi in BINS:
         m = (d_edge >= lo * 1e-3) & (d_edge < hi * 1e-3)
         if m.any():
             w = area0[m]
-            print(f"| {lo}-{hi} | {m.sum()} | {np.sum(q['osi'][m] * w) / w.sum():.3f} | "
-                  f"{np.sum(q['tawss'][m] * w) / w.sum():.3f} |")
-    print()
+            bands.append({"from_mm": lo, "to_mm": None if hi == np.inf else hi, "faces": int(m.sum()),
+                          "osi_mean": float(np.sum(q["osi"][m] * w) / w.sum()),
+                          "tawss_pa": float(np.sum(q["tawss"][m] * w) / w.sum())})
+    top = max(bands, key=lambda b: b["osi_mean"])
+    out["osi_by_distance_from_free_edge"] = bands
+    out["osi_highest_band"] = {"from_mm": top["from_mm"], "to_mm": top["to_mm"], "osi_mean": top["osi_mean"],
+                               "where": where(top["from_mm"])}
+    out["tawss_ventricular_over_aortic"] = out["ventricular"]["tawss_pa"] / max(out["aortic"]["tawss_pa"], 1e-300)
+    return out
+
+
+report = []
+for (t0, t1), what, geo, q in indices:
+    f = figures(geo, q)
+    report.append(dict(t0=float(t0), t1=float(t1), source=what, sides=geo["check"], **f))
+    print(f"### TAWSS and OSI {t0:.4f}-{t1:.4f} s ({what}; {geo['check']})\n")
+    print("| side | TAWSS area mean [Pa] | mean \\|tau_w\\| [Pa] | OSI area mean | OSI 95th pct |\n|---|---|---|---|---|")
+    for label in ("ventricular", "aortic", "rims"):
+        x = f[label]
+        print(f"| {label} | {x['tawss_pa']:.3f} | {x['wss_magnitude_mean_pa']:.3f} | {x['osi_mean']:.3f} | "
+              f"{x['osi_p95']:.3f} |")
+    print("\n| distance from the free edge [mm] | faces | OSI area mean | TAWSS area mean [Pa] |\n|---|---|---|---|")
+    for b in f["osi_by_distance_from_free_edge"]:
+        hi = "inf" if b["to_mm"] is None else b["to_mm"]
+        print(f"| {b['from_mm']}-{hi} | {b['faces']} | {b['osi_mean']:.3f} | {b['tawss_pa']:.3f} |")
+    top = f["osi_highest_band"]
+    print(f"\nOSI highest at the {top['where']} ({top['from_mm']}-{'inf' if top['to_mm'] is None else top['to_mm']} mm "
+          f"from the free edge); TAWSS ventricular / aortic {f['tawss_ventricular_over_aortic']:.2f}\n")
+if json_out:
+    with open(json_out, "w") as fh:
+        json.dump({"surface": surface, "windows": report}, fh, indent=1)

@@ -2,8 +2,8 @@
 the inlet flux equals the tabulated Q(t) to 1e-10 at every step, the leaflets move downstream,
 the transvalvular pressure drop is positive in forward flow, the orifice area starts at the
 reference gap's share of the annulus, mesh quality is reported every step, and
-scripts/valve_wss_sides.py splits the leaflets' wall shear into their two sides and writes its
-sampled TAWSS and OSI for the pictures."""
+scripts/valve_wss_sides.py splits the leaflets' wall shear into their two sides, writes its
+sampled TAWSS and OSI for the pictures and their figures by name (--json)."""
 import math
 import os
 import re
@@ -59,7 +59,8 @@ if rows:
     # other side, wall shear reported on each.
     ws = subprocess.run([sys.executable, os.path.join(SRC, "scripts", "valve_wss_sides.py"), r.dir,
                          "--times", "0.0015", "--sampled", "0,0.0015", "--write",
-                         os.path.join(r.dir, "sampled_hemo.h5")], capture_output=True, text=True)
+                         os.path.join(r.dir, "sampled_hemo.h5"), "--json", os.path.join(r.dir, "wss_sides.json")],
+                        capture_output=True, text=True)
     print(ws.stdout[-1500:], ws.stderr[-500:])
     m = re.search(r"sides from the material geometry: (\d+) ventricular, (\d+) aortic, (\d+) rim faces; "
                   r"partner across the thickness on the other side: (\d+) of (\d+)", ws.stdout)
@@ -77,4 +78,13 @@ if rows:
             w = f["interface/window_sampled"]
             ok = w["tawss"].shape == (n,) and w["osi"].shape == (n,) and 0 <= w["osi"][:].min() <= w["osi"][:].max() <= 0.5
         check(ok and n == v + a + rim, f"--write: TAWSS and OSI on all {v + a + rim} faces ({n} written)")
+        # --json: the same window's figures by name (issue 55), equal to the printed table's.
+        import json
+        js = json.load(open(os.path.join(r.dir, "wss_sides.json")))
+        win = [x for x in js["windows"] if x["source"].startswith("sampled")]
+        ok = len(win) == 1 and all(0 <= win[0][k]["osi_mean"] <= 0.5 for k in ("ventricular", "aortic"))
+        ok = ok and win[0]["osi_highest_band"]["where"] in ("free edge", "belly", "base")
+        printed = re.findall(r"^\| ventricular \| ([\d.]+) \|", ws.stdout, re.M)
+        ok = ok and printed and abs(float(printed[-1]) - win[0]["ventricular"]["tawss_pa"]) < 1e-3
+        check(ok, f"--json: per-side TAWSS and OSI, the OSI's highest band, as printed ({printed[-1:]})")
 finish()
