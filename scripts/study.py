@@ -2,15 +2,17 @@
 
   scripts/study <scene> --vary mesh=coarse,medium,fine --vary dt=2e-4,1e-4,5e-5
                 [--vary preset=direct,fieldsplit_ilu] [--vary rho_inf=1,0.5,0]
-                [--qoi COLUMN:max|min|final|mean@T0-T1|valve:NAME ...] [--curve COLUMN] [--metric qoi|curve]
+                [--qoi COLUMN:max|min|final|mean@T0-T1|valve:NAME|wss:NAME ...] [--curve COLUMN]
+                [--metric qoi|curve]
                 [--target-error 1e-2] [--np 2] [--out DIR] [--plot-only] [-- app options]
 
 Runs every case of the grid (cases already finished in DIR are reused), then for each case: the
 quantities of interest (a monitor column's max/min/final, or its time-weighted mean over
 [T0, T1] s; or valve:NAME[@CYCLE], a figure of scripts/valve_report.py --json such as
-valve:peak_flow_goa_cm2; --qoi repeated for several, the first one primary), each one's error against its
-reference, the
-difference of the monitor curve from the finest case's, and the cost (wall time, s/step,
+valve:peak_flow_goa_cm2; or wss:NAME, a leaflet wall-shear figure of the run's last closed
+-hemo_window by scripts/valve_wss_sides.py --json, such as wss:ventricular.tawss_pa or
+wss:osi_highest_band.osi_mean; --qoi repeated for several, the first one primary), each one's
+error against its reference, the difference of the monitor curve from the finest case's, and the cost (wall time, s/step,
 iterations).  The reference is the finest case, improved by Richardson extrapolation along each
 refinement direction with >= 3 levels at a constant ratio whose observed order is sane (0.5..6;
 the script says which it used).  Writes DIR/study.csv, DIR/study.md and DIR/accuracy_cost.png
@@ -167,11 +169,35 @@ def valve_figure(spec, out):
     return float(value)
 
 
+def wss_figure(spec, out):
+    """wss:NAME (dotted path): a figure of the case's last closed wall-shear window, by
+    scripts/valve_wss_sides.py --json."""
+    path = os.path.join(out, "wss_sides.json")
+    summary = os.path.join(out, "summary.json")
+    if not os.path.exists(path) or os.path.getmtime(path) < os.path.getmtime(summary):  # none, or of an earlier run
+        p = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "valve_wss_sides.py"), out, "--json", path],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if p.returncode != 0:
+            sys.exit(f"study: --qoi {spec}: valve_wss_sides.py failed on {out}: {p.stderr.strip()}")
+    windows = [w for w in json.load(open(path))["windows"] if w["source"].startswith("window")]
+    if not windows:
+        sys.exit(f"study: --qoi {spec}: no closed -hemo_window in {out}: give -hemo_window the window's length")
+    value = windows[-1]
+    for key in spec[len("wss:"):].split("."):
+        if not isinstance(value, dict) or key not in value:
+            sys.exit(f"study: --qoi {spec}: no '{key}' in valve_wss_sides.py's figures (e.g. ventricular.tawss_pa, "
+                     "aortic.osi_mean, osi_highest_band.osi_mean, tawss_ventricular_over_aortic)")
+        value = value[key]
+    return float(value)
+
+
 def qoi_value(spec, rows, out):
     """A quantity of interest from monitor rows: COLUMN:max|min|final|mean@T0-T1, or a valve
     figure (valve:NAME[@CYCLE], named as in valve_report.py --json)."""
     if spec.startswith("valve:"):
         return valve_figure(spec, out)
+    if spec.startswith("wss:"):
+        return wss_figure(spec, out)
     col, how = (spec.split(":", 1) + ["max"])[:2]
     if col not in rows[0]:
         sys.exit(f"study: monitor column '{col}' not in {out}/monitor.csv")
@@ -280,7 +306,7 @@ def main():
         sys.exit("study: give --qoi COLUMN:max|min|final (or a '# study-qoi:' line in the scene)")
     specs = args.qoi
     args.qoi = specs[0]  # the primary quantity: the Pareto front's and the curve's
-    curve_col = args.curve or ("valve_goa" if args.qoi.startswith("valve:") else args.qoi.split(":")[0])
+    curve_col = args.curve or ("valve_goa" if args.qoi.startswith(("valve:", "wss:")) else args.qoi.split(":")[0])
     args.out = args.out or os.path.join(ROOT, "results", "study", os.path.basename(scene)[:-5])
     os.makedirs(args.out, exist_ok=True)
     grid = {}
