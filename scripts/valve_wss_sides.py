@@ -41,20 +41,22 @@ if "--sampled" in args:
     i = args.index("--sampled")
     sampled = [float(t) for t in args[i + 1].split(",")]
     del args[i:i + 2]
-write = None
-if "--write" in args:
-    i = args.index("--write")
+
+
+def output_file(flag, example):
+    """The file named after FLAG (removed from args), in an existing directory; None without FLAG."""
+    if flag not in args:
+        return None
+    i = args.index(flag)
     if i + 1 >= len(args) or not os.path.isdir(os.path.dirname(os.path.abspath(args[i + 1]))):
-        sys.exit("valve_wss_sides.py: --write needs a file in an existing directory, e.g. --write DIR/sampled_hemo.h5")
-    write = args[i + 1]
+        sys.exit(f"valve_wss_sides.py: {flag} needs a file in an existing directory, e.g. {flag} DIR/{example}")
+    path = args[i + 1]
     del args[i:i + 2]
-json_out = None
-if "--json" in args:
-    i = args.index("--json")
-    if i + 1 >= len(args) or not os.path.isdir(os.path.dirname(os.path.abspath(args[i + 1]))):
-        sys.exit("valve_wss_sides.py: --json needs a file in an existing directory, e.g. --json DIR/wss_sides.json")
-    json_out = args[i + 1]
-    del args[i:i + 2]
+    return path
+
+
+write = output_file("--write", "sampled_hemo.h5")
+json_out = output_file("--json", "wss_sides.json")
 if "--surface" in args:
     i = args.index("--surface")
     surface = args[i + 1]
