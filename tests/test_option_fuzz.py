@@ -26,7 +26,9 @@ for line in ours.splitlines():
 
 ES = [scene("ethier_steinman"), "-mesh_h", "1", "-ts_max_steps", "1"]
 POIS = [scene("poiseuille"), "-ts_max_steps", "1"]
-WK = [scene("windkessel_pipe"), "-ts_max_steps", "1"]
+# Its smallest step half its 10 ms: a sign that the numerics cannot take (-bc_inlet_value -1,
+# 1 m^3/s out) ends in exit 3 after one cut, not 10 (56 s of this test's 225).
+WK = [scene("windkessel_pipe"), "-ts_max_steps", "1", "-ts_adapt_dt_min", "0.005"]
 SOLID = [scene("mr_uniaxial"), "-ts_max_steps", "1"]
 FSI = [scene("plates_closing"), "-ts_max_steps", "1"]
 VALVE = [scene("valve_closing"), "-ts_max_steps", "1"]
