@@ -1,4 +1,5 @@
-"""Helpers for fsi_app tests: run the app (under mpirun on several ranks), read its outputs, assert with messages."""
+"""Helpers for fsi_app tests: run the app (under mpirun on several ranks), read its outputs,
+assert with messages."""
 import csv
 import json
 import math

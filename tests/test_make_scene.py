@@ -89,9 +89,11 @@ if code == 0:
     # diastole.opts: the held diastolic load (valve_diastole.opts, run by valve_strip_shape) on the
     # same mesh, with the same monitors and frame as the scene that just ran.
     dia = open(f"{tmp}/asym/diastole.opts").read().splitlines()
-    same = [ln for ln in opts.splitlines() if ln.startswith("-") and not ln.startswith(("-options_file", "-scene_name"))]
+    same = [ln for ln in opts.splitlines()
+            if ln.startswith("-") and not ln.startswith(("-options_file", "-scene_name"))]
     check("-options_file examples/valve/valve_diastole.opts" in dia and all(ln in dia for ln in same),
-          f"diastole.opts loads valve_diastole.opts with scene.opts's mesh, annulus and monitors ({len(same)} lines)")
+          "diastole.opts loads valve_diastole.opts with scene.opts's mesh, annulus and monitors "
+          f"({len(same)} lines)")
 
 # 3. Bad input.
 for extra, what in ((["--h", "1.5"], "--h"), (["--extend-in", "-1"], "--extend")):

@@ -2,9 +2,9 @@
 mesh, 2 ranks: the closed native valve's shape, whose neighbouring coaptation strips stand
 gap - t = 1.55 mm apart and narrow to gapw - t = 0.63 mm where they meet the wall.
 
-1. At rest (valve_diastole.opts, the closing run's first step, the aorta 57 Pa up): the mesh is the one the
-   scene's options are made for: no leaflet contact (the slits at the commissures are wider than
-   -contact_offset 0.6 mm), the gap seal already holds those slits shut (narrower than
+1. At rest (valve_diastole.opts, the closing run's first step, the aorta 57 Pa up): the mesh is
+   the one the scene's options are made for: no leaflet contact (the slits at the commissures are
+   wider than -contact_offset 0.6 mm), the gap seal already holds those slits shut (narrower than
    -gap_seal_gap_open 0.78 mm), and the orifice is the slits and the central hole seen along the
    axis, 10.9 % of the annulus measured (the band: the hole pi rcenter^2 plus three slits 1.55 mm
    wide over the 11 mm from the hole to the wall, 11.8 %, less where they narrow at the wall).
